@@ -1,0 +1,46 @@
+# Thin wrapper for the README's commands. Everything real lives in CMake.
+#   make run    install dependencies, configure, build, run the showcase, write its output and plot
+#   make test   install dependencies, configure, build, run the whole ctest suite
+#   make bench  build and run the benchmarks (figures on stdout)
+#   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)
+BUILD ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+DEPS := build-essential cmake pkg-config libgsl-dev libsundials-dev libyaml-dev libcmocka-dev \
+        python3-matplotlib
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+SHOWCASE := $(BUILD)/showcase
+
+.PHONY: all deps configure build test run bench sanitize clean
+
+all: build
+
+deps:
+	@missing=""; for p in $(DEPS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing$$missing"; \
+	  $(SUDO) apt-get update && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+configure: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+run: build
+	cases/showcase $(BUILD) $(SHOWCASE)
+
+bench: build
+	cmake --build $(BUILD) --target bench
+
+sanitize: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSABRE_SANITIZE=ON
+	cmake --build build-asan -j $(JOBS)
+	ctest --test-dir build-asan --output-on-failure -j $(JOBS) -L unit
+
+clean:
+	rm -rf $(BUILD) build-asan

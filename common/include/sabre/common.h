@@ -1,0 +1,193 @@
+/*
+ * SABRE common/ — the one small layer both applications (fv1d, sph) share:
+ *   1. messages and fatal errors (SWIFT-style error() naming file, function and line);
+ *   2. case files: YAML read through libyaml into a small tree, typed getters by path that report
+ *      the file, line and expected type, documented defaults written back into the tree (so the
+ *      resolved parameters can be saved as used_case.yaml), `--set key=value` overrides, and a
+ *      final check that every key of the file was used (a typo must not fall back to a default);
+ *   3. CSV writing (full double precision) and progress lines with ETA on stderr.
+ *
+ * This layer belongs to the applications: unlike riemann/, its fatal helpers may exit.
+ */
+#ifndef SABRE_COMMON_H
+#define SABRE_COMMON_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------
+ * Messages and errors
+ * ------------------------------------------------------------------------------------------- */
+
+/** Exit code for bad input (CLI flags, case files, geometry files, non-physical parameters). */
+#define CMN_EXIT_INPUT 2
+/** Exit code for a run that failed (NaN, lost particle, solver failure, I/O error). */
+#define CMN_EXIT_FAILURE 1
+
+/** Set the program name used as prefix of every message (default "sabre"). */
+void cmn_set_program_name(const char *name);
+/** Informational message on stderr, prefixed with the program name; newline appended. */
+void cmn_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/** Warning on stderr ("<prog>: warning: ..."). */
+void cmn_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/** Bad user input: "<prog>: error: ..." on stderr, exit(CMN_EXIT_INPUT). */
+_Noreturn void cmn_input_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/** Internal or run failure with source location; exit(CMN_EXIT_FAILURE). Use via cmn_error(). */
+_Noreturn void cmn_fatal_at(const char *file, const char *func, int line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+#define cmn_error(...)                                      \
+  do {                                                      \
+    cmn_fatal_at(__FILE__, __func__, __LINE__, __VA_ARGS__); \
+  } while (0)
+
+/** malloc/calloc/realloc that call cmn_error() on failure (never return NULL for n > 0). */
+void *cmn_malloc(size_t n);
+void *cmn_calloc(size_t count, size_t size);
+void *cmn_realloc(void *p, size_t n);
+
+/**
+ * Strict number parsing for CLI values: the whole string must be a finite number.
+ * Returns 0 on success, -1 otherwise (value untouched).
+ */
+int cmn_parse_double(const char *text, double *value);
+/** Parse a comma-separated list of at most `max` finite numbers; returns the count or -1. */
+int cmn_parse_doubles(const char *text, double *values, int max);
+/** Parse a whole-number string into a long in [lo, hi]; 0 on success, -1 otherwise. */
+int cmn_parse_long(const char *text, long lo, long hi, long *value);
+
+/** mkdir -p; returns 0 on success, -1 with errno set. */
+int cmn_mkdir_p(const char *path);
+
+/* ---------------------------------------------------------------------------------------------
+ * Case files
+ *
+ * Paths address the tree: "fluid.c0", "boundaries.left.type", "regions[1].min" (sequence index).
+ * Getters return 0 on success and -1 on error. On error the case keeps a message such as
+ *   case.yaml:12:7: fluid.c0: expected a positive number, got 'abc'
+ * (cmn_case_error()). In fatal mode (the default, cmn_case_set_fatal) any error prints that
+ * message and exits with CMN_EXIT_INPUT, so applications need not check return values; tests turn
+ * fatal mode off and check them.
+ *
+ * Optional getters (`_opt_`) insert the default into the tree when the key is absent, so
+ * cmn_case_write() gives the fully resolved parameters. Every node a getter reads is marked used;
+ * cmn_case_check_unused() then reports the first key of the file no getter asked for.
+ * ------------------------------------------------------------------------------------------- */
+struct cmn_case;
+
+/** Load and parse a YAML file. On failure returns NULL and, if err != NULL, writes a message
+ *  "<path>:<line>:<col>: <what>" into err (size errlen). The root must be a mapping. */
+struct cmn_case *cmn_case_load(const char *path, char *err, size_t errlen);
+/** Parse YAML text; `name` stands for the file name in messages. Same error contract. */
+struct cmn_case *cmn_case_parse(const char *text, const char *name, char *err, size_t errlen);
+/** Free the case (NULL accepted). Strings returned by getters die with it. */
+void cmn_case_free(struct cmn_case *c);
+/** Fatal mode on (1, default) or off (0). */
+void cmn_case_set_fatal(struct cmn_case *c, int fatal);
+/** Last error message ("" if none). Owned by the case. */
+const char *cmn_case_error(const struct cmn_case *c);
+/** File name given at load/parse. */
+const char *cmn_case_name(const struct cmn_case *c);
+
+/**
+ * Apply an override "path=value" (CLI --set). The value is parsed as YAML (scalar, or flow
+ * sequence/mapping such as "[1, 2]"); missing intermediate mappings are created; an existing node
+ * is replaced. Errors: no '=', empty path, bad path syntax, unparsable value.
+ */
+int cmn_case_set(struct cmn_case *c, const char *assignment);
+
+/** 1 if the path exists, else 0 (does not mark it used). */
+int cmn_case_has(const struct cmn_case *c, const char *path);
+/** Mark a path and everything below it used (for sections read by a generic reader). */
+void cmn_case_mark_used(struct cmn_case *c, const char *path);
+
+/** Required finite number in [lo, hi] (use -INFINITY/INFINITY for no bound). */
+int cmn_case_get_double(struct cmn_case *c, const char *path, double lo, double hi, double *value);
+/** Optional finite number in [lo, hi], default `def` when absent. */
+int cmn_case_opt_double(struct cmn_case *c, const char *path, double def, double lo, double hi,
+                        double *value);
+/** Required / optional number > 0. */
+int cmn_case_get_positive(struct cmn_case *c, const char *path, double *value);
+int cmn_case_opt_positive(struct cmn_case *c, const char *path, double def, double *value);
+/** Required / optional integer in [lo, hi]. */
+int cmn_case_get_long(struct cmn_case *c, const char *path, long lo, long hi, long *value);
+int cmn_case_opt_long(struct cmn_case *c, const char *path, long def, long lo, long hi,
+                      long *value);
+/** Required / optional boolean (true/false, yes/no, on/off). */
+int cmn_case_get_bool(struct cmn_case *c, const char *path, int *value);
+int cmn_case_opt_bool(struct cmn_case *c, const char *path, int def, int *value);
+/** Required / optional string (scalar); the pointer is owned by the case. */
+int cmn_case_get_string(struct cmn_case *c, const char *path, const char **value);
+int cmn_case_opt_string(struct cmn_case *c, const char *path, const char *def, const char **value);
+/**
+ * Required / optional choice among a NULL-terminated list of names; *index receives the
+ * position. Error: "expected one of: a, b, c".
+ */
+int cmn_case_get_choice(struct cmn_case *c, const char *path, const char *const *names, int *index);
+int cmn_case_opt_choice(struct cmn_case *c, const char *path, const char *const *names, int def,
+                        int *index);
+/**
+ * Required / optional sequence of exactly n numbers (n > 0), or of 1..max numbers when n == 0
+ * (count returned in *count, may be NULL when n > 0). The optional form fills `def` (n values).
+ */
+int cmn_case_get_doubles(struct cmn_case *c, const char *path, int n, int max, double *values,
+                         int *count);
+int cmn_case_opt_doubles(struct cmn_case *c, const char *path, int n, const double *def,
+                         double *values);
+/** Length of the sequence at path (0 when absent); -1 (error) if the node is not a sequence. */
+int cmn_case_seq_length(struct cmn_case *c, const char *path);
+/** 1 if path is a mapping, 0 if absent; error (-1) if it exists but is not a mapping. */
+int cmn_case_is_map(struct cmn_case *c, const char *path);
+/** Line (1-based) of the node at path in the file, 0 if absent or inserted. */
+int cmn_case_line(const struct cmn_case *c, const char *path);
+/** Report an application-level error about a key ("<file>:<line>:<col>: <path>: <msg>");
+ *  returns -1 (exits in fatal mode). For constraints between keys, e.g. "must exceed x_min". */
+int cmn_case_fail(struct cmn_case *c, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/** Error naming the first key of the file (in document order) that no getter read. 0 if none. */
+int cmn_case_check_unused(struct cmn_case *c);
+/** Write the tree (with defaults filled in) as YAML. 0 on success, -1 on I/O error. */
+int cmn_case_write(const struct cmn_case *c, FILE *out);
+/** Write it to a file path. 0 / -1. */
+int cmn_case_write_file(const struct cmn_case *c, const char *path);
+
+/* ---------------------------------------------------------------------------------------------
+ * CSV output
+ * ------------------------------------------------------------------------------------------- */
+struct cmn_csv;
+
+/** Create/truncate `path` and write the header line from `ncols` column names. NULL on failure
+ *  (errno set). */
+struct cmn_csv *cmn_csv_open(const char *path, int ncols, const char *const *names);
+/** Append one row of ncols numbers, printed with %.17g (round-trip exact). 0 / -1. */
+int cmn_csv_row(struct cmn_csv *csv, const double *values);
+/** Flush to the OS (for long runs). 0 / -1. */
+int cmn_csv_flush(struct cmn_csv *csv);
+/** Close; returns -1 if any write failed. NULL accepted. */
+int cmn_csv_close(struct cmn_csv *csv);
+
+/* ---------------------------------------------------------------------------------------------
+ * Progress on stderr: "step 1200  t = 0.1234 s  dt = 1.2e-05 s  N = 40000  ETA 00:01:23"
+ * ------------------------------------------------------------------------------------------- */
+struct cmn_progress {
+  double t_start, t_end;  /**< simulated time span [s] */
+  double wall_start;      /**< wall clock at start [s] */
+  double wall_last;       /**< wall clock of the last report [s] */
+  double interval;        /**< minimal wall seconds between reports (default 1) */
+  int enabled;            /**< 0 silences reports */
+};
+/** Wall clock in seconds (monotonic). */
+double cmn_wall_time(void);
+void cmn_progress_start(struct cmn_progress *p, double t_start, double t_end);
+/** Print a line if `interval` has passed since the last one, or if force != 0. */
+void cmn_progress_report(struct cmn_progress *p, long step, double t, double dt, long count,
+                         int force);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SABRE_COMMON_H */

@@ -1,0 +1,48 @@
+#define _GNU_SOURCE /* feenableexcept */
+#include "testutil.h"
+
+#include <fenv.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+
+void sabre_assert_rel(double x, double expected, double tol, const char *expr, const char *file,
+                      int line) {
+  double scale = fmax(fabs(expected), DBL_MIN);
+  double err = fabs(x - expected) / scale;
+  if (!(err <= tol)) {
+    print_error("%s = %.17g, expected %.17g: relative error %.3e > %.3e\n", expr, x, expected, err,
+                tol);
+    _fail(file, line);
+  }
+}
+
+void sabre_assert_abs(double x, double expected, double tol, const char *expr, const char *file,
+                      int line) {
+  double err = fabs(x - expected);
+  if (!(err <= tol)) {
+    print_error("%s = %.17g, expected %.17g: absolute error %.3e > %.3e\n", expr, x, expected, err,
+                tol);
+    _fail(file, line);
+  }
+}
+
+void sabre_fp_traps_on(void) {
+  feclearexcept(FE_ALL_EXCEPT);
+  feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
+}
+
+void sabre_fp_traps_off(void) {
+  fedisableexcept(FE_ALL_EXCEPT);
+  feclearexcept(FE_ALL_EXCEPT);
+}
+
+void sabre_rng_seed(struct sabre_rng *rng, uint64_t seed) { rng->state = seed; }
+
+double sabre_rng_uniform(struct sabre_rng *rng, double lo, double hi) {
+  uint64_t z = (rng->state += 0x9E3779B97F4A7C15ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
+}

@@ -1,0 +1,388 @@
+/* Cell lists and neighbour lists (fluid–fluid, fluid–vertex, fluid–segment, ...).
+ *
+ * Cells are at least one kernel support wide; each query cell gathers from the cells within the
+ * search reach (one layer for points, more only if a segment's extent requires it). Lists are
+ * built in two passes (count, then fill) so each row is written by the thread that owns its query
+ * particle: no atomics, and the result is independent of the thread count. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sabre/common.h"
+#include "sabre/sph.h"
+
+/* Cap on the number of cells relative to the particle count, for sparse sets. */
+#define CELLS_PER_PARTICLE_MAX 4
+/* Widest stencil, in cells each side (the reach is one or two cells in practice). */
+#define STENCIL_REACH_MAX 16
+
+static const char *const axis_name = "xyz";
+
+void sph_cells_free(struct sph_cells *c) {
+  for (int k = 0; k < SPH_NKINDS; k++) {
+    free(c->start[k]);
+    free(c->index[k]);
+    for (int a = 0; a < 3; a++) free(c->xs[k][a]);
+  }
+  memset(c, 0, sizeof *c);
+}
+
+static size_t cell_coord(const struct sph_cells *c, int a, double x) {
+  double t = floor((x - c->domain.lo[a]) / c->width[a]);
+  long n = c->ncell[a];
+  if (c->domain.periodic[a]) {
+    long i = (long)fmod(t, (double)n);
+    return (size_t)(i < 0 ? i + n : i);
+  }
+  if (t < 0) return 0;
+  if (t >= (double)n) return (size_t)(n - 1);
+  return (size_t)t;
+}
+
+static size_t cell_of(const struct sph_cells *c, const double *x) {
+  size_t id = 0;
+  for (int a = c->dim - 1; a >= 0; a--) id = id * (size_t)c->ncell[a] + cell_coord(c, a, x[a]);
+  return id;
+}
+
+/* Largest distance from a segment's centroid to its vertices (minimum image). */
+static double segment_reach(const struct sph_system *s) {
+  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
+  double reach = 0;
+  for (size_t j = 0; j < seg->n; j++) {
+    double c[3] = {seg->x[0][j], seg->x[1][j], seg->x[2][j]}, v[3][3];
+    sph_segment_vertices(s, j, c, v);
+    for (int k = 0; k < s->dim; k++) {
+      double r2 = 0;
+      for (int a = 0; a < 3; a++) r2 += (v[k][a] - c[a]) * (v[k][a] - c[a]);
+      reach = fmax(reach, sqrt(r2));
+    }
+  }
+  return reach;
+}
+
+void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cell_min) {
+  if (!(cell_min > 0)) cmn_error("cell width %g must be positive", cell_min);
+  int dim = s->dim;
+  c->dim = dim;
+  c->domain = s->domain;
+  c->domain.dim = dim;
+  size_t ntot = 0;
+  for (int a = 0; a < dim; a++) {
+    if (c->domain.periodic[a]) continue;
+    c->domain.lo[a] = INFINITY;
+    c->domain.hi[a] = -INFINITY;
+  }
+  for (int k = 0; k < SPH_NKINDS; k++) {
+    const struct sph_parts *p = &s->part[k];
+    ntot += p->n;
+    for (int a = 0; a < dim; a++) {
+      if (c->domain.periodic[a]) continue;
+      for (size_t i = 0; i < p->n; i++) {
+        double x = p->x[a][i];
+        if (!isfinite(x)) cmn_error("%s particle %zu (id %lld) has a non-finite position",
+                                    k == 0 ? "fluid" : k == 1 ? "vertex" : "segment", i,
+                                    (long long)p->id[i]);
+        if (x < c->domain.lo[a]) c->domain.lo[a] = x;
+        if (x > c->domain.hi[a]) c->domain.hi[a] = x;
+      }
+    }
+  }
+  for (int a = 0; a < 3; a++) {
+    c->ncell[a] = 1;
+    c->width[a] = cell_min;
+    if (a >= dim) {
+      c->domain.lo[a] = c->domain.hi[a] = 0;
+      c->domain.periodic[a] = 0;
+    } else if (!(c->domain.lo[a] <= c->domain.hi[a])) { /* no particles */
+      c->domain.lo[a] = c->domain.hi[a] = 0;
+    }
+  }
+  /* Widen the cells of sparse sets so memory stays proportional to the particle count. */
+  double width = cell_min;
+  size_t cap = CELLS_PER_PARTICLE_MAX * ntot + 64;
+  for (;;) {
+    size_t total = 1;
+    for (int a = 0; a < dim; a++) {
+      double len = c->domain.hi[a] - c->domain.lo[a];
+      double n = floor(len / width);
+      if (n < 1) n = 1;
+      if (n > 1e7) n = 1e7;
+      c->ncell[a] = (int)n;
+      c->width[a] = c->domain.periodic[a] || len > 0 ? len / n : width;
+      if (c->width[a] < width) c->width[a] = width; /* non-periodic: a point at hi is clamped */
+      total *= (size_t)n;
+    }
+    c->ncells = total;
+    if (total <= cap) break;
+    width *= 1.5;
+  }
+  c->segment_reach = segment_reach(s);
+
+  for (int k = 0; k < SPH_NKINDS; k++) {
+    const struct sph_parts *p = &s->part[k];
+    free(c->start[k]);
+    c->start[k] = cmn_calloc(c->ncells + 1, sizeof(size_t));
+    if (c->alloc[k] < p->n || !c->index[k]) {
+      size_t len = p->n ? p->n : 1;
+      c->index[k] = cmn_realloc(c->index[k], len * sizeof(size_t));
+      for (int a = 0; a < 3; a++) c->xs[k][a] = cmn_realloc(c->xs[k][a], len * sizeof(double));
+      c->alloc[k] = len;
+    }
+    size_t *cell = cmn_malloc((p->n ? p->n : 1) * sizeof(size_t));
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+    for (size_t i = 0; i < p->n; i++) {
+      double x[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
+      cell[i] = cell_of(c, x);
+    }
+    size_t *start = c->start[k];
+    for (size_t i = 0; i < p->n; i++) start[cell[i] + 1]++;
+    for (size_t ci = 0; ci < c->ncells; ci++) start[ci + 1] += start[ci];
+    size_t *fill = cmn_malloc((c->ncells + 1) * sizeof(size_t));
+    memcpy(fill, start, (c->ncells + 1) * sizeof(size_t));
+    for (size_t i = 0; i < p->n; i++) {
+      size_t at = fill[cell[i]]++;
+      c->index[k][at] = i;
+      for (int a = 0; a < 3; a++) c->xs[k][a][at] = p->x[a][i];
+    }
+    free(fill);
+    free(cell);
+  }
+}
+
+void sph_segment_vertices(const struct sph_system *s, size_t j, const double *near,
+                          double v[3][3]) {
+  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
+  const struct sph_parts *vert = &s->part[SPH_KIND_VERTEX];
+  double c[3] = {seg->x[0][j], seg->x[1][j], seg->x[2][j]}, d[3], cn[3];
+  sph_domain_delta(&s->domain, near, c, d);
+  for (int a = 0; a < 3; a++) cn[a] = near[a] + d[a];
+  for (int k = 0; k < 3; k++) {
+    if (k >= s->dim) {
+      v[k][0] = v[k][1] = v[k][2] = 0;
+      continue;
+    }
+    size_t iv = seg->vertex[k][j];
+    double xv[3] = {vert->x[0][iv], vert->x[1][iv], vert->x[2][iv]};
+    sph_domain_delta(&s->domain, c, xv, d);
+    for (int a = 0; a < 3; a++) v[k][a] = cn[a] + d[a];
+  }
+}
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+double sph_element_distance(int dim, const double v[3][3], const double *p, double *q) {
+  if (dim == 1) {
+    q[0] = v[0][0];
+    q[1] = q[2] = 0;
+  } else if (dim == 2) {
+    double ab[3], ap[3];
+    for (int a = 0; a < 3; a++) {
+      ab[a] = v[1][a] - v[0][a];
+      ap[a] = p[a] - v[0][a];
+    }
+    double len2 = dot3(ab, ab), t = len2 > 0 ? dot3(ap, ab) / len2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    for (int a = 0; a < 3; a++) q[a] = v[0][a] + t * ab[a];
+  } else {
+    /* Closest point on a triangle by Voronoi regions of its vertices, edges and face. */
+    const double *A = v[0], *B = v[1], *C = v[2];
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    for (int a = 0; a < 3; a++) {
+      ab[a] = B[a] - A[a];
+      ac[a] = C[a] - A[a];
+      ap[a] = p[a] - A[a];
+      bp[a] = p[a] - B[a];
+      cp[a] = p[a] - C[a];
+    }
+    double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+    double s = 0, t = 0; /* q = A + s ab + t ac */
+    if (d1 <= 0 && d2 <= 0) {
+    } else if (d3 >= 0 && d4 <= d3) {
+      s = 1;
+    } else if (d6 >= 0 && d5 <= d6) {
+      t = 1;
+    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+      s = d1 / (d1 - d3);
+    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+      t = d2 / (d2 - d6);
+    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+      double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+      s = 1 - w;
+      t = w;
+    } else {
+      double denom = 1 / (va + vb + vc);
+      s = vb * denom;
+      t = vc * denom;
+    }
+    for (int a = 0; a < 3; a++) q[a] = A[a] + s * ab[a] + t * ac[a];
+  }
+  double d2 = 0;
+  for (int a = 0; a < 3; a++) d2 += (p[a] - q[a]) * (p[a] - q[a]);
+  return sqrt(d2);
+}
+
+/* The neighbour test shared by the cell and naive searches, so both decide borderline pairs
+ * identically. xa is the query particle, j the candidate of kind `other`. */
+static int is_neighbour(const struct sph_system *s, enum sph_kind query, enum sph_kind other,
+                        const double *xa, size_t i, const double *xb, size_t j, double radius,
+                        double reach) {
+  if (query == other && i == j) return 0;
+  double d[3];
+  sph_domain_delta(&s->domain, xa, xb, d);
+  double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  if (query != SPH_KIND_SEGMENT && other != SPH_KIND_SEGMENT) return r2 < radius * radius;
+  double lim = radius + reach;
+  if (r2 >= lim * lim) return 0;
+  double v[3][3], q[3];
+  if (other == SPH_KIND_SEGMENT) {
+    sph_segment_vertices(s, j, xa, v);
+    return sph_element_distance(s->dim, v, xa, q) < radius;
+  }
+  sph_segment_vertices(s, i, xb, v);
+  return sph_element_distance(s->dim, v, xb, q) < radius;
+}
+
+static void check_kinds(enum sph_kind query, enum sph_kind other) {
+  if (query == SPH_KIND_SEGMENT && other == SPH_KIND_SEGMENT)
+    cmn_error("segment-segment neighbour lists are not supported");
+}
+
+static void nlist_alloc(struct sph_nlist *nl, enum sph_kind query, enum sph_kind other, size_t n) {
+  nl->query = query;
+  nl->other = other;
+  nl->n = n;
+  free(nl->offset);
+  nl->offset = cmn_calloc(n + 1, sizeof(size_t));
+}
+
+static void nlist_reserve(struct sph_nlist *nl) {
+  size_t need = nl->offset[nl->n];
+  if (need > nl->capacity || !nl->index) {
+    nl->capacity = need > 0 ? need + need / 8 : 1;
+    free(nl->index);
+    nl->index = cmn_malloc(nl->capacity * sizeof(size_t));
+  }
+}
+
+void sph_nlist_free(struct sph_nlist *nl) {
+  free(nl->offset);
+  free(nl->index);
+  memset(nl, 0, sizeof *nl);
+}
+
+void sph_nlist_build_naive(struct sph_nlist *nl, const struct sph_system *s, enum sph_kind query,
+                           enum sph_kind other, double radius) {
+  check_kinds(query, other);
+  const struct sph_parts *pq = &s->part[query], *po = &s->part[other];
+  double reach = query == SPH_KIND_SEGMENT || other == SPH_KIND_SEGMENT ? INFINITY : 0;
+  nlist_alloc(nl, query, other, pq->n);
+  for (int pass = 0; pass < 2; pass++) {
+    for (size_t i = 0; i < pq->n; i++) {
+      double xa[3] = {pq->x[0][i], pq->x[1][i], pq->x[2][i]};
+      size_t cnt = 0, *row = pass ? nl->index + nl->offset[i] : NULL;
+      for (size_t j = 0; j < po->n; j++) {
+        double xb[3] = {po->x[0][j], po->x[1][j], po->x[2][j]};
+        if (!is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) continue;
+        if (pass) row[cnt] = j;
+        cnt++;
+      }
+      if (!pass) nl->offset[i + 1] = nl->offset[i] + cnt;
+    }
+    if (!pass) nlist_reserve(nl);
+  }
+}
+
+/* Cells along one axis within `reach` cells of cell i, each listed once (a short periodic axis
+ * would otherwise list a cell twice). Returns the count. */
+static int axis_stencil(const struct sph_cells *c, int a, int i, int reach, int *out) {
+  int n = c->ncell[a], cnt = 0;
+  if (a >= c->dim) {
+    out[0] = 0;
+    return 1;
+  }
+  if (c->domain.periodic[a]) {
+    if (2 * reach + 1 >= n) {
+      for (int j = 0; j < n; j++) out[cnt++] = j;
+      return cnt;
+    }
+    for (int d = -reach; d <= reach; d++) out[cnt++] = ((i + d) % n + n) % n;
+    return cnt;
+  }
+  for (int d = -reach; d <= reach; d++)
+    if (i + d >= 0 && i + d < n) out[cnt++] = i + d;
+  return cnt;
+}
+
+void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const struct sph_system *s,
+                     enum sph_kind query, enum sph_kind other, double radius) {
+  check_kinds(query, other);
+  const struct sph_parts *pq = &s->part[query];
+  if (c->dim != s->dim) cmn_error("cells built for dimension %d, system has %d", c->dim, s->dim);
+  double reach = query == SPH_KIND_SEGMENT || other == SPH_KIND_SEGMENT ? c->segment_reach : 0;
+  double lim = radius + reach;
+  int sreach[3] = {0, 0, 0};
+  for (int a = 0; a < s->dim; a++) {
+    sreach[a] = (int)ceil(lim / c->width[a]);
+    if (sreach[a] < 1) sreach[a] = 1;
+    if (sreach[a] > STENCIL_REACH_MAX)
+      cmn_error("search radius %g m spans more than %d cells of %g m: build the cells wider",
+                radius, STENCIL_REACH_MAX, c->width[a]);
+    double len = c->domain.hi[a] - c->domain.lo[a];
+    if (c->domain.periodic[a] && len < 2 * lim)
+      cmn_input_error(
+          "periodic direction %c is %g m long, shorter than twice the search reach %g m "
+          "(support plus segment size): enlarge the domain or refine dr",
+          axis_name[a], len, lim);
+  }
+  nlist_alloc(nl, query, other, pq->n);
+  const size_t *startq = c->start[query], *starto = c->start[other];
+  const size_t *idxq = c->index[query], *idxo = c->index[other];
+  for (int pass = 0; pass < 2; pass++) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 8)
+#endif
+    for (size_t ci = 0; ci < c->ncells; ci++) {
+      if (startq[ci] == startq[ci + 1]) continue;
+      int ic[3] = {0, 0, 0}, st[3][2 * STENCIL_REACH_MAX + 1], nst[3];
+      size_t rest = ci;
+      for (int a = 0; a < 3; a++) {
+        if (a < c->dim) {
+          ic[a] = (int)(rest % (size_t)c->ncell[a]);
+          rest /= (size_t)c->ncell[a];
+        }
+        nst[a] = axis_stencil(c, a, ic[a], sreach[a], st[a]);
+      }
+      for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
+        size_t i = idxq[qa];
+        double xa[3] = {c->xs[query][0][qa], c->xs[query][1][qa], c->xs[query][2][qa]};
+        size_t cnt = 0, *row = pass ? nl->index + nl->offset[i] : NULL;
+        for (int s2 = 0; s2 < nst[2]; s2++)
+          for (int s1 = 0; s1 < nst[1]; s1++)
+            for (int s0 = 0; s0 < nst[0]; s0++) {
+              size_t cj = ((size_t)st[2][s2] * (size_t)c->ncell[1] + (size_t)st[1][s1]) *
+                              (size_t)c->ncell[0] +
+                          (size_t)st[0][s0];
+              for (size_t ob = starto[cj]; ob < starto[cj + 1]; ob++) {
+                double xb[3] = {c->xs[other][0][ob], c->xs[other][1][ob], c->xs[other][2][ob]};
+                size_t j = idxo[ob];
+                if (!is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) continue;
+                if (pass) row[cnt] = j;
+                cnt++;
+              }
+            }
+        if (!pass) nl->offset[i + 1] = cnt;
+      }
+    }
+    if (!pass) {
+      for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
+      nlist_reserve(nl);
+    }
+  }
+}

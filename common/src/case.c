@@ -387,9 +387,16 @@ const char *cmn_case_name(const struct cmn_case *c) { return c->name; }
  * Errors
  * ------------------------------------------------------------------------------------------- */
 
+/* The line a user sees for a node: a section (mapping or sequence) that is the value of a key
+ * starts where its key is written; a scalar is where its value is. */
+static int node_line(const struct cmn_node *n) {
+  return n->kind != NODE_SCALAR && n->key_line > 0 ? n->key_line : n->line;
+}
+
 /* Where a node came from: "case.yaml:12:7", "case.yaml (--set a.b=1)" or "case.yaml". */
 static void where(const struct cmn_case *c, const struct cmn_node *n, int use_key, char *buf,
                   size_t len) {
+  if (n != NULL && n->kind != NODE_SCALAR && n->key_line > 0) use_key = 1;
   int line = n != NULL ? (use_key ? n->key_line : n->line) : 0;
   int col = n != NULL ? (use_key ? n->key_col : n->col) : 0;
   if (n != NULL && n->origin != NULL)
@@ -541,9 +548,9 @@ static int require(struct cmn_case *c, const char *path, struct cmn_node **node)
     *node = f.node;
     return 0;
   }
-  if (f.parent != c->root && f.parent->line > 0)
+  if (f.parent != c->root && node_line(f.parent) > 0)
     return fail_at(c, NULL, path, "required key missing (in '%.*s' at line %d)", (int)f.parent_len,
-                   path, f.parent->line);
+                   path, node_line(f.parent));
   return fail_at(c, NULL, path, "required key missing");
 }
 
@@ -660,7 +667,7 @@ void cmn_case_mark_used(struct cmn_case *c, const char *path) {
 
 int cmn_case_line(const struct cmn_case *c, const char *path) {
   const struct cmn_node *n = find(c, path);
-  return n != NULL && n->origin == NULL ? n->line : 0;
+  return n != NULL && n->origin == NULL ? node_line(n) : 0;
 }
 
 int cmn_case_fail(struct cmn_case *c, const char *path, const char *fmt, ...) {

@@ -138,7 +138,7 @@ static void test_double(void **state) {
   assert_int_equal(cmn_case_get_double(c, "fluid.c0", -INFINITY, 1.5, &x), -1);
   expect_error(c, "fluid.c0: expected a number <= 1.5, got '12.5'");
   assert_int_equal(cmn_case_get_double(c, "fluid", -INFINITY, INFINITY, &x), -1);
-  expect_error(c, "t.yaml:3:3: fluid: expected a number, got a mapping");
+  expect_error(c, "t.yaml:2:1: fluid: expected a number, got a mapping");
   assert_int_equal(cmn_case_get_double(c, "fluid.gravity", -INFINITY, INFINITY, &x), -1);
   expect_error(c, "fluid.gravity: expected a number, got a sequence");
   assert_int_equal(cmn_case_get_double(c, "empty", -INFINITY, INFINITY, &x), -1);
@@ -147,7 +147,7 @@ static void test_double(void **state) {
   /* Missing keys, at the top and inside a section (naming the section's line). */
   assert_int_equal(cmn_case_get_double(c, "fluid.c1", -INFINITY, INFINITY, &x), -1);
   assert_string_equal(cmn_case_error(c),
-                      "t.yaml: fluid.c1: required key missing (in 'fluid' at line 3)");
+                      "t.yaml: fluid.c1: required key missing (in 'fluid' at line 2)");
   assert_int_equal(cmn_case_get_double(c, "solver.cfl", -INFINITY, INFINITY, &x), -1);
   assert_string_equal(cmn_case_error(c), "t.yaml: solver.cfl: required key missing");
   assert_int_equal(cmn_case_get_positive(c, "regions[7].min", &x), -1);
@@ -267,7 +267,7 @@ static void test_string_and_choice(void **state) {
   assert_int_equal(cmn_case_get_string(c, "steps", &s), 0);
   assert_string_equal(s, "1200");
   assert_int_equal(cmn_case_get_string(c, "fluid", &s), -1);
-  expect_error(c, "t.yaml:3:3: fluid: expected a string, got a mapping");
+  expect_error(c, "t.yaml:2:1: fluid: expected a string, got a mapping");
   assert_int_equal(cmn_case_get_string(c, "empty", &s), -1);
   expect_error(c, "empty: expected a string, got an empty value");
   assert_int_equal(cmn_case_get_string(c, "fluid.title", &s), -1);
@@ -311,7 +311,7 @@ static void test_doubles(void **state) {
   assert_int_equal(cmn_case_get_doubles(c, "fluid.gravity", 0, 5, v, &count), 0);
   assert_int_equal(count, 2);
   assert_int_equal(cmn_case_get_doubles(c, "fluid.gravity", 3, 0, v, &count), -1);
-  expect_error(c, "t.yaml:8:12: fluid.gravity: expected a sequence of 3 numbers, got 2 elements");
+  expect_error(c, "t.yaml:8:3: fluid.gravity: expected a sequence of 3 numbers, got 2 elements");
   assert_int_equal(cmn_case_get_doubles(c, "fluid.gravity", 0, 1, v, &count), -1);
   expect_error(c, "fluid.gravity: expected a sequence of 1 number, got 2 elements");
   assert_int_equal(cmn_case_get_doubles(c, "fluid.c0", 1, 0, v, &count), -1);
@@ -341,7 +341,7 @@ static void test_structure(void **state) {
   assert_int_equal(cmn_case_seq_length(c, "regions"), 2);
   assert_int_equal(cmn_case_seq_length(c, "nothing"), 0);
   assert_int_equal(cmn_case_seq_length(c, "fluid"), -1);
-  expect_error(c, "t.yaml:3:3: fluid: expected a sequence, got a mapping");
+  expect_error(c, "t.yaml:2:1: fluid: expected a sequence, got a mapping");
   assert_int_equal(cmn_case_is_map(c, "fluid"), 1);
   assert_int_equal(cmn_case_is_map(c, "regions[1]"), 1);
   assert_int_equal(cmn_case_is_map(c, "nothing"), 0);
@@ -357,6 +357,14 @@ static void test_structure(void **state) {
   assert_int_equal(cmn_case_line(c, "fluid.c0"), 3);
   assert_int_equal(cmn_case_line(c, "regions[1].max"), 13);
   assert_int_equal(cmn_case_line(c, "regions[1].max[1]"), 13);
+  /* A section is where its key is written. */
+  assert_int_equal(cmn_case_line(c, "fluid"), 2);
+  assert_int_equal(cmn_case_line(c, "regions"), 10);
+  assert_int_equal(cmn_case_line(c, "regions[1]"), 12);
+  double x;
+  assert_int_equal(cmn_case_get_double(c, "regions[0].foo", -INFINITY, INFINITY, &x), -1);
+  assert_string_equal(cmn_case_error(c),
+                      "t.yaml: regions[0].foo: required key missing (in 'regions[0]' at line 11)");
   assert_int_equal(cmn_case_line(c, "nothing"), 0);
 
   assert_int_equal(cmn_case_fail(c, "fluid.rho0", "must exceed %g", 1000.0), -1);

@@ -352,10 +352,7 @@ static void usage(FILE *out) {
 
 int main(int argc, char **argv) {
   gsl_set_error_handler_off();
-  if (argc < 2) {
-    usage(stderr);
-    return EXIT_INPUT;
-  }
+  if (argc < 2) die_input("missing command: boundary, exact or sweep (see sabre-riemann --help)");
   if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     usage(stdout);
     return 0;

@@ -101,6 +101,29 @@ int main(void) {
     if (sink == 42.0) puts("");
     printf("%-44s %14.3e\n", "exact Riemann problem (random states)", (double)count / (t - t0));
   }
+  {
+    /* What the SPH calls every step: the batch over 3D segments (frame, normal problem,
+     * tangential rules), half expansions and half shocks, imposed pressure. */
+    static struct rmn_boundary_input in[N];
+    static struct rmn_boundary_result res[N];
+    for (int i = 0; i < N; ++i) {
+      in[i] = (struct rmn_boundary_input){
+          .normal = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
+          .rho = expand_p[i].rho,
+          .u = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
+          .imposed = RMN_IMPOSE_PRESSURE,
+          .value = i % 2 ? expand_p[i].value : shock_p[i].value};
+    }
+    double t0 = now(), t;
+    long count = 0;
+    do {
+      if (rmn_boundary_solve_batch(&eos, &par, ws, 3, N, in, res, NULL) != RMN_SUCCESS)
+        return EXIT_FAILURE;
+      count += N;
+      t = now();
+    } while (t - t0 < seconds);
+    printf("%-44s %14.3e\n", "batch, 3D segments, 50% shocks", (double)count / (t - t0));
+  }
   rmn_workspace_free(ws);
   return 0;
 }

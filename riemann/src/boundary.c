@@ -44,50 +44,77 @@ int rmn_boundary_solve_normal(const struct rmn_eos *eos, const struct rmn_params
   if (imposed != RMN_IMPOSE_PRESSURE && imposed != RMN_IMPOSE_VELOCITY) return RMN_EINVAL;
   if (rho_int <= 0.0) return RMN_EDENSITY;
 
-  const double c_i = rmn_eos_sound_speed(eos, rho_int);
+  /* Interior state, with one power at most: b (ρ/ρ0)^ξ = p + b, c = c0 sqrt((ρ/ρ0)^(ξ−1)),
+   * ψ = 2c/(ξ−1). All increments below are taken relative to it (log1p/expm1), so that weak
+   * waves keep full relative precision and (δρ, δp, δψ) stay consistent through the EOS. */
+  const int iso = eos->isothermal;
+  const double half = eos->half_xim1;
+  const double ratio = rho_int / eos->rho0;
+  const double pref = iso ? 0.0 : eos->b * rmn_eos_ratio_xi_(eos, ratio);
+  const double c_i = iso ? eos->c0 : eos->c0 * sqrt(pref / (eos->b * ratio));
   if (!(fabs(un_int) < c_i)) return RMN_ESUPERSONIC;
-  const double psi_i = rmn_eos_psi(eos, rho_int);
-  const double p_i = rmn_eos_pressure(eos, rho_int);
+  const double psi_i = iso ? eos->c0 * log(ratio) : eos->psi_scale * c_i / eos->c0;
+  const double p_i = iso ? eos->c0 * eos->c0 * (rho_int - eos->rho0) : pref - eos->b;
 
   struct rmn_normal_state r = {.shock_speed = NAN};
+  double c2;
   if (imposed == RMN_IMPOSE_PRESSURE) {
+    const double dp = value - p_i;
+    double drho, log_ratio; /* log_ratio = log(ρ2/ρ_int) */
+    if (iso) {
+      drho = dp / (eos->c0 * eos->c0);
+      if (!(rho_int + drho > 0.0)) return RMN_ECAVITATION;
+      log_ratio = log1p(drho / rho_int);
+    } else {
+      if (!(dp / pref > -1.0)) return RMN_ECAVITATION; /* p2 ≤ p(0) */
+      log_ratio = log1p(dp / pref) / eos->xi;
+      drho = rho_int * expm1(log_ratio);
+    }
     r.p = value;
-    if (!eos->isothermal && !(value > -eos->b)) return RMN_ECAVITATION;
-    /* ρ2 from the pressure increment, so that (δρ, δp) are consistent through the EOS to
-     * round-off even for weak waves (ρ(p2) − ρ_int would cancel). */
-    double drho = rmn_eos_density_increment(eos, rho_int, value - p_i);
     r.rho = rho_int + drho;
     if (!(r.rho > 0.0)) return RMN_ECAVITATION;
+    c2 = iso ? eos->c0 : c_i * exp(half * log_ratio);
     if (drho <= params->contact_tol * rho_int) {
       /* Contact (J 26–27) or expansion (J 28–29): R+1 = u_n − ψ is conserved. */
       r.wave = fabs(drho) <= params->contact_tol * rho_int ? RMN_WAVE_CONTACT : RMN_WAVE_EXPANSION;
-      r.un = un_int + rmn_eos_psi_increment(eos, rho_int, drho);
+      r.un = un_int + (iso ? eos->c0 * log_ratio : psi_i * expm1(half * log_ratio));
     } else {
       r.wave = RMN_WAVE_SHOCK;
       if (params->shock == RMN_SHOCK_LINEARISED) {
         if (un_int == 0.0) return RMN_EUNDEFINED;
-        r.un = un_int - (value - p_i) / (rho_int * un_int);
+        r.un = un_int - dp / (rho_int * un_int);
         r.shock_speed = 0.0;
       } else {
         if (!ws) return RMN_EINVAL;
-        st = rmn_shock_solve_pressure_(eos, params, ws, rho_int, un_int, c_i, drho, value - p_i,
-                                       &r.un, &r.shock_speed, &r.iterations);
+        st = rmn_shock_solve_pressure_(eos, params, ws, rho_int, un_int, c_i, drho, dp, &r.un,
+                                       &r.shock_speed, &r.iterations);
         if (st != RMN_SUCCESS) return st;
       }
     }
   } else {
     r.un = value;
-    double du = value - un_int;
+    const double du = value - un_int;
     if (du <= params->contact_tol * c_i) {
       r.wave = fabs(du) <= params->contact_tol * c_i ? RMN_WAVE_CONTACT : RMN_WAVE_EXPANSION;
-      if (!eos->isothermal && !(psi_i + du > 0.0)) return RMN_ECAVITATION;
-      r.rho = rho_int + rmn_eos_density_increment_from_psi(eos, rho_int, du);
+      /* ψ2 = ψ_int + δu (R+1 conserved); ψ2 ≤ 0 is vacuum for ξ > 1 */
+      if (iso) {
+        double drho = rho_int * expm1(du / eos->c0);
+        r.rho = rho_int + drho;
+        r.p = p_i + eos->c0 * eos->c0 * drho;
+        c2 = eos->c0;
+      } else {
+        if (!(psi_i + du > 0.0)) return RMN_ECAVITATION;
+        double log_ratio = log1p(du / psi_i) / half;
+        r.rho = rho_int * (1.0 + expm1(log_ratio));
+        r.p = p_i + pref * expm1(eos->xi * log_ratio);
+        c2 = half * (psi_i + du);
+      }
       if (!(r.rho > 0.0)) return RMN_ECAVITATION;
     } else {
       r.wave = RMN_WAVE_SHOCK;
       if (params->shock == RMN_SHOCK_LINEARISED) {
         double p2 = p_i + rho_int * un_int * (un_int - value);
-        if (!eos->isothermal && !(p2 > -eos->b)) return RMN_ECAVITATION;
+        if (!iso && !(p2 > -eos->b)) return RMN_ECAVITATION;
         r.rho = rmn_eos_density(eos, p2);
         if (!(r.rho > 0.0)) return RMN_ECAVITATION;
         r.shock_speed = 0.0;
@@ -98,12 +125,12 @@ int rmn_boundary_solve_normal(const struct rmn_eos *eos, const struct rmn_params
         if (st != RMN_SUCCESS) return st;
         if (!(r.rho > rho_int)) return RMN_ENOCONV; /* converged to the wrong branch */
       }
+      r.p = p_i + rmn_eos_pressure_increment(eos, rho_int, r.rho - rho_int);
+      c2 = rmn_eos_sound_speed(eos, r.rho);
     }
-    r.p = p_i + rmn_eos_pressure_increment(eos, rho_int, r.rho - rho_int);
   }
 
-  const double c2 = rmn_eos_sound_speed(eos, r.rho);
-  if (!isfinite(r.un) || !isfinite(r.rho)) return RMN_ENOCONV;
+  if (!isfinite(r.un) || !isfinite(r.rho) || !isfinite(c2)) return RMN_ENOCONV;
   if (!(fabs(r.un) < c2)) return RMN_ESUPERSONIC;
   if (r.wave == RMN_WAVE_SHOCK && params->shock == RMN_SHOCK_EXACT &&
       !lax_holds(un_int, c_i, r.un, c2, r.shock_speed))

@@ -158,9 +158,10 @@ static inline double rmn_eos_density(const struct rmn_eos *e, double p) {
 /** Sound speed c(ρ) = sqrt(dp/dρ) [m/s], J(19). */
 static inline double rmn_eos_sound_speed(const struct rmn_eos *e, double rho) {
   if (e->isothermal) return e->c0;
-  if (e->integer_xi == 3) return e->c0 * (rho / e->rho0);
-  if (e->integer_xi == 2) return e->c0 * sqrt(rho / e->rho0);
-  return e->c0 * pow(rho / e->rho0, e->half_xim1);
+  double r = rho / e->rho0;
+  if (e->integer_xi == 3) return e->c0 * r;
+  if (e->integer_xi) return r > 0.0 ? e->c0 * sqrt(rmn_eos_ratio_xi_(e, r) / r) : 0.0;
+  return e->c0 * pow(r, e->half_xim1);
 }
 
 /** ψ(ρ) = ∫ c/ρ dρ [m/s], J(24–25). ψ(0) = 0 for ξ > 1; ψ → −∞ as ρ → 0 for ξ = 1. */

@@ -83,7 +83,7 @@ static int write_series(struct fv1d_solver *s, struct fv1d_output *out, long ste
   for (int k = 0; k < 6; ++k) r[10 + k] = q[k];
   for (int k = 0; k < 3; ++k) /* change of the total minus what entered through the ends */
     r[16 + k] = totals[k] - out->totals0[k] - (q[k] - q[3 + k]);
-  r[18] = -r[18];
+  r[18] = 0.0 - r[18]; /* dissipated energy, without printing −0 */
   out->last_series_step = step;
   return cmn_csv_row(out->series, r);
 }

@@ -278,9 +278,14 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
 
   double tol = 1e-9 * g->dr;
   sph_mesh_merge_vertices(&g->walls, tol);
+  char msg[2048];
+  /* Check the walls as given first, so messages quote the user's own points and triangles; with
+   * periodic directions the walls close only once joined across the boundary (after refining). */
+  int any_periodic = dom->periodic[0] || dom->periodic[1] || dom->periodic[2];
+  if (!any_periodic && sph_mesh_check(&g->walls, NULL, msg, sizeof msg))
+    cmn_input_error("%s: geometry.walls: %s", cmn_case_name(c), msg);
   sph_mesh_refine(&g->walls, g->dr);
   geom_mesh_identify_periodic(&g->walls, dom, 1e-6 * g->dr);
-  char msg[2048];
   if (sph_mesh_check(&g->walls, dom, msg, sizeof msg))
     cmn_input_error("%s: geometry.walls: %s", cmn_case_name(c), msg);
   if (g->walls.nelem == 0 && !(dom->periodic[0] && (g->dim < 2 || dom->periodic[1]) &&

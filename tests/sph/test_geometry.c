@@ -1,0 +1,220 @@
+/* Geometry from case files: generators, periodic joining, walls to particles, fluid filling
+ * against an independent brute-force count (point in polygon by ray crossings, distances to every
+ * wall edge), 1D/2D/3D, STL obstacle. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sabre/common.h"
+#include "sabre/sph.h"
+#include "testutil.h"
+
+static char tmpdir[64];
+
+static int setup(void **state) {
+  (void)state;
+  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-geom-XXXXXX");
+  return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+static void build(const char *yaml, struct sph_geometry *g, struct sph_system *s) {
+  char name[128], err[512];
+  snprintf(name, sizeof name, "%s/case.yaml", tmpdir);
+  struct cmn_case *c = cmn_case_parse(yaml, name, err, sizeof err);
+  if (!c) print_error("%s\n", err);
+  assert_non_null(c);
+  sph_geometry_read(g, c);
+  assert_int_equal(cmn_case_check_unused(c), 0);
+  sph_system_from_geometry(s, g);
+  cmn_case_free(c);
+}
+
+static double seg_dist(const double *p, const double *a, const double *b) {
+  double dx = b[0] - a[0], dy = b[1] - a[1];
+  double t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy);
+  t = t < 0 ? 0 : t > 1 ? 1 : t;
+  return hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+static int inside(size_t n, const double (*q)[2], const double *p) {
+  int in = 0;
+  for (size_t i = 0, j = n - 1; i < n; j = i++)
+    if ((q[i][1] > p[1]) != (q[j][1] > p[1]) &&
+        p[0] < q[j][0] + (p[1] - q[j][1]) * (q[i][0] - q[j][0]) / (q[i][1] - q[j][1]))
+      in = !in;
+  return in;
+}
+
+static double poly_dist(size_t n, const double (*q)[2], const double *p) {
+  double d = INFINITY;
+  for (size_t i = 0; i < n; i++) d = fmin(d, seg_dist(p, q[i], q[(i + 1) % n]));
+  return d;
+}
+
+static void test_box_2d(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build("geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
+        "    - {type: box, lo: [0, 0], hi: [1.2, 0.7], open: [x+]}\n"
+        "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 0.5]}\n",
+        &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 12 * 5);
+  assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 2 * (12 + 7));
+  assert_int_equal(s.part[SPH_KIND_VERTEX].n, 2 * (12 + 7));
+  assert_rel(s.h, 0.2, 1e-15); /* default h_over_dr = 2 */
+  assert_rel(g.min_wall_distance, 0.05, 1e-15);
+  const struct sph_parts *ps = &s.part[SPH_KIND_SEGMENT], *pv = &s.part[SPH_KIND_VERTEX];
+  int nopen = 0, ncorner = 0;
+  for (size_t j = 0; j < ps->n; j++) {
+    assert_rel(ps->measure[j], 0.1, 1e-12);
+    if (ps->flags[j] & SPH_FLAG_OPEN) {
+      nopen++;
+      assert_rel(ps->x[0][j], 1.2, 1e-15);
+      assert_rel(ps->normal[0][j], -1, 1e-15);
+    }
+  }
+  for (size_t i = 0; i < pv->n; i++) ncorner += (pv->flags[i] & SPH_FLAG_CORNER) != 0;
+  assert_int_equal(nopen, 7);
+  assert_int_equal(ncorner, 2);
+  /* A vertex at a corner has the 45° mean normal. */
+  for (size_t i = 0; i < pv->n; i++)
+    if (pv->x[0][i] == 0 && pv->x[1][i] == 0) {
+      assert_rel(pv->normal[0][i], sqrt(0.5), 1e-15);
+      assert_rel(pv->normal[1][i], sqrt(0.5), 1e-15);
+    }
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
+/* Sloping tank, obstacle with the fluid outside, fluid box overlapping the walls. */
+static void test_fill_2d_polygons(void **state) {
+  (void)state;
+  const double tank[5][2] = {{0, 0}, {2.1, 0}, {3, 1.13}, {3, 1.5}, {0, 1.5}};
+  const double obst[3][2] = {{0.61, 0.3}, {1.07, 0.33}, {0.8, 0.57}};
+  struct sph_geometry g;
+  struct sph_system s;
+  build("geometry:\n  dimension: 2\n  dr: 0.0371\n  h_over_dr: 1.7\n"
+        "  min_wall_distance: 0.02\n  walls:\n"
+        "    - {type: polygon, points: [[0, 0], [2.1, 0], [3, 1.13], [3, 1.5], [0, 1.5]]}\n"
+        "    - type: polygon\n      points: [[0.61, 0.3], [1.07, 0.33], [0.8, 0.57]]\n"
+        "      fluid: outside\n"
+        "  fluid:\n    - {type: box, lo: [-0.2, -0.1], hi: [3.3, 0.8]}\n",
+        &g, &s);
+  const struct sph_parts *pf = &s.part[SPH_KIND_FLUID];
+  /* Brute force on the same lattice. */
+  double dr = 0.0371;
+  size_t expected = 0;
+  long nx = (long)floor(3.5 / dr + 1e-9), ny = (long)floor(0.9 / dr + 1e-9);
+  for (long j = 0; j < ny; j++)
+    for (long i = 0; i < nx; i++) {
+      double p[2] = {-0.2 + (i + 0.5) * dr, -0.1 + (j + 0.5) * dr};
+      if (inside(5, tank, p) && !inside(3, obst, p) && poly_dist(5, tank, p) >= 0.02 &&
+          poly_dist(3, obst, p) >= 0.02)
+        expected++;
+    }
+  assert_true(expected > 1000);
+  assert_int_equal(pf->n, expected);
+  for (size_t i = 0; i < pf->n; i++) {
+    double p[2] = {pf->x[0][i], pf->x[1][i]};
+    assert_true(inside(5, tank, p) && !inside(3, obst, p));
+  }
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
+/* Periodic channel: the walls close across x, the seam vertices exist once. */
+static void test_channel_periodic(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build("geometry:\n  dimension: 2\n  dr: 0.1\n  periodic: [x]\n  walls:\n"
+        "    - {type: channel, lo: [0, 0], hi: [1, 0.4]}\n"
+        "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.4]}\n",
+        &g, &s);
+  assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 20);
+  assert_int_equal(s.part[SPH_KIND_VERTEX].n, 20);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 40);
+  assert_true(s.domain.periodic[0] && !s.domain.periodic[1]);
+  /* Every segment has length dr through the seam. */
+  for (size_t j = 0; j < s.part[SPH_KIND_SEGMENT].n; j++)
+    assert_rel(s.part[SPH_KIND_SEGMENT].measure[j], 0.1, 1e-12);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
+static void test_interval_1d(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build("geometry:\n  dimension: 1\n  dr: 0.05\n  walls:\n"
+        "    - {type: interval, lo: [0.25], hi: [1.25], open: [x+]}\n"
+        "  fluid:\n    - {type: box, lo: [0.25], hi: [1.0]}\n",
+        &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 15);
+  assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 2);
+  assert_rel(s.part[SPH_KIND_SEGMENT].normal[0][1], -1, 0);
+  assert_int_equal(s.part[SPH_KIND_SEGMENT].flags[1], SPH_FLAG_OPEN);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
+/* 3D box tank with an STL cube obstacle (fluid outside). */
+static void test_fill_3d_stl(void **state) {
+  (void)state;
+  struct sph_mesh cube;
+  sph_mesh_init(&cube, 3);
+  int src = sph_mesh_add_source(&cube, "cube");
+  sph_mesh_box(&cube, (double[]){0.3, 0.3, 0.1}, (double[]){0.6, 0.7, 0.45}, 0.15, 0, 0, src);
+  char path[128];
+  snprintf(path, sizeof path, "%s/cube.stl", tmpdir);
+  assert_int_equal(sph_mesh_write_stl(&cube, path, 0), 0); /* ASCII: exact doubles */
+  sph_mesh_free(&cube);
+  struct sph_geometry g;
+  struct sph_system s;
+  build("geometry:\n  dimension: 3\n  dr: 0.05\n  h_over_dr: 1.3\n  walls:\n"
+        "    - {type: box, lo: [0, 0, 0], hi: [1, 1, 1]}\n"
+        "    - {type: stl, file: cube.stl, fluid: outside, scale: 1.0}\n"
+        "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [1, 1, 0.5]}\n",
+        &g, &s);
+  size_t expected = 0;
+  for (int k = 0; k < 10; k++)
+    for (int j = 0; j < 20; j++)
+      for (int i = 0; i < 20; i++) {
+        double p[3] = {(i + 0.5) * 0.05, (j + 0.5) * 0.05, (k + 0.5) * 0.05};
+        /* distance to the cube [0.3, 0.6] x [0.3, 0.7] x [0.1, 0.45] from outside */
+        double lo[3] = {0.3, 0.3, 0.1}, hi[3] = {0.6, 0.7, 0.45}, d2 = 0;
+        int in = 1;
+        for (int a = 0; a < 3; a++) {
+          double e = fmax(lo[a] - p[a], p[a] - hi[a]);
+          if (e > 0) d2 += e * e;
+          in &= e < 0;
+        }
+        if (!in && d2 >= 0.025 * 0.025 * (1 - 1e-9)) expected++;
+      }
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, expected);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 4000 - 6 * 8 * 7);
+  /* Box faces and cube faces meshed at ≈ dr: all triangles closed and small. */
+  char msg[512];
+  assert_int_equal(sph_mesh_check(&g.walls, &g.domain, msg, sizeof msg), 0);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
+int main(void) {
+  sabre_fp_traps_on();
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_box_2d), cmocka_unit_test(test_fill_2d_polygons),
+      cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_interval_1d),
+      cmocka_unit_test(test_fill_3d_stl)};
+  return cmocka_run_group_tests(tests, setup, teardown);
+}

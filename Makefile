@@ -3,6 +3,7 @@
 #   make test   install dependencies, configure, build, run the whole ctest suite
 #   make bench  build and run the benchmarks (figures on stdout)
 #   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)
+#   make format / make format-check   clang-format the sources / check they are formatted
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEPS := build-essential cmake pkg-config libgsl-dev libsundials-dev libyaml-dev libcmocka-dev \
@@ -10,7 +11,7 @@ DEPS := build-essential cmake pkg-config libgsl-dev libsundials-dev libyaml-dev 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SHOWCASE := $(BUILD)/showcase
 
-.PHONY: all deps configure build test run bench sanitize clean
+.PHONY: all deps configure build test run bench sanitize format format-check clean
 
 all: build
 
@@ -41,6 +42,14 @@ sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSABRE_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
 	ctest --test-dir build-asan --output-on-failure -j $(JOBS) -L unit
+
+# clang-format (Google base, .clang-format) over every tracked C source and header.
+SOURCES = $$(git ls-files '*.c' '*.h')
+format:
+	clang-format -i $(SOURCES)
+
+format-check:
+	clang-format --dry-run --Werror $(SOURCES)
 
 clean:
 	rm -rf $(BUILD) build-asan

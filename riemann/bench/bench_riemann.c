@@ -1,12 +1,11 @@
 /* Riemann benchmark: boundary solves per second (expansion and shock branches, imposed pressure
  * and imposed velocity) and exact Riemann solves per second, on one core. Inputs are drawn from a
  * seeded generator around water at rest (ξ = 7), so branch and iteration counts are realistic. */
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
-
-#include <gsl/gsl_errno.h>
 
 #include "sabre/riemann.h"
 
@@ -31,8 +30,8 @@ struct sample {
 };
 
 static double bench_boundary(const struct rmn_eos *eos, const struct rmn_params *par,
-                             struct rmn_workspace *ws, enum rmn_imposed imposed,
-                             enum rmn_wave want, const struct sample *s, double seconds) {
+                             struct rmn_workspace *ws, enum rmn_imposed imposed, enum rmn_wave want,
+                             const struct sample *s, double seconds) {
   double t0 = now(), t;
   long count = 0;
   double sink = 0.0;
@@ -76,12 +75,14 @@ int main(void) {
   const double seconds = 0.5;
   printf("riemann/ benchmark (one core, xi = 7, rho0 = 1000, c0 = 20, %.1f s per line)\n", seconds);
   printf("%-44s %14s\n", "case", "solves/s");
-  printf("%-44s %14.3e\n", "boundary, imposed pressure, expansion",
-         bench_boundary(&eos, &par, ws, RMN_IMPOSE_PRESSURE, RMN_WAVE_EXPANSION, expand_p, seconds));
+  printf(
+      "%-44s %14.3e\n", "boundary, imposed pressure, expansion",
+      bench_boundary(&eos, &par, ws, RMN_IMPOSE_PRESSURE, RMN_WAVE_EXPANSION, expand_p, seconds));
   printf("%-44s %14.3e\n", "boundary, imposed pressure, shock (Newton)",
          bench_boundary(&eos, &par, ws, RMN_IMPOSE_PRESSURE, RMN_WAVE_SHOCK, shock_p, seconds));
-  printf("%-44s %14.3e\n", "boundary, imposed velocity, expansion",
-         bench_boundary(&eos, &par, ws, RMN_IMPOSE_VELOCITY, RMN_WAVE_EXPANSION, expand_u, seconds));
+  printf(
+      "%-44s %14.3e\n", "boundary, imposed velocity, expansion",
+      bench_boundary(&eos, &par, ws, RMN_IMPOSE_VELOCITY, RMN_WAVE_EXPANSION, expand_u, seconds));
   printf("%-44s %14.3e\n", "boundary, imposed velocity, shock (Newton)",
          bench_boundary(&eos, &par, ws, RMN_IMPOSE_VELOCITY, RMN_WAVE_SHOCK, shock_u, seconds));
   {
@@ -90,8 +91,8 @@ int main(void) {
     do {
       for (int i = 0; i < N; ++i) {
         struct rmn_exact sol;
-        if (rmn_exact_solve(&eos, &par, ws, lefts[i].rho, lefts[i].un, rights[i].rho,
-                            rights[i].un, &sol) != RMN_SUCCESS)
+        if (rmn_exact_solve(&eos, &par, ws, lefts[i].rho, lefts[i].un, rights[i].rho, rights[i].un,
+                            &sol) != RMN_SUCCESS)
           return EXIT_FAILURE;
         sink += sol.rho_star;
       }
@@ -107,12 +108,12 @@ int main(void) {
     static struct rmn_boundary_input in[N];
     static struct rmn_boundary_result res[N];
     for (int i = 0; i < N; ++i) {
-      in[i] = (struct rmn_boundary_input){
-          .normal = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
-          .rho = expand_p[i].rho,
-          .u = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
-          .imposed = RMN_IMPOSE_PRESSURE,
-          .value = i % 2 ? expand_p[i].value : shock_p[i].value};
+      in[i] =
+          (struct rmn_boundary_input){.normal = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
+                                      .rho = expand_p[i].rho,
+                                      .u = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)},
+                                      .imposed = RMN_IMPOSE_PRESSURE,
+                                      .value = i % 2 ? expand_p[i].value : shock_p[i].value};
     }
     double t0 = now(), t;
     long count = 0;

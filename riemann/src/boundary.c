@@ -36,7 +36,8 @@ static int lax_holds(double u_i, double c_i, double u2, double c2, double s) {
 
 int rmn_boundary_solve_normal(const struct rmn_eos *eos, const struct rmn_params *params,
                               struct rmn_workspace *ws, double rho_int, double un_int,
-                              enum rmn_imposed imposed, double value, struct rmn_normal_state *out) {
+                              enum rmn_imposed imposed, double value,
+                              struct rmn_normal_state *out) {
   if (!eos || !params || !out) return RMN_EINVAL;
   int st = rmn_params_check(params);
   if (st != RMN_SUCCESS) return st;

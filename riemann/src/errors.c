@@ -27,9 +27,12 @@ const char *rmn_status_name(int status) {
 
 const char *rmn_wave_name(enum rmn_wave wave) {
   switch (wave) {
-    case RMN_WAVE_CONTACT: return "contact";
-    case RMN_WAVE_EXPANSION: return "expansion";
-    case RMN_WAVE_SHOCK: return "shock";
+    case RMN_WAVE_CONTACT:
+      return "contact";
+    case RMN_WAVE_EXPANSION:
+      return "expansion";
+    case RMN_WAVE_SHOCK:
+      return "shock";
   }
   return "unknown";
 }

@@ -49,8 +49,13 @@ int rmn_exact_solve(const struct rmn_eos *eos, const struct rmn_params *params,
   if (!valid_state(rho_l, u_l) || !valid_state(rho_r, u_r)) return RMN_EINVAL;
   if (rho_l == 0.0 && rho_r == 0.0) return RMN_EINVAL;
 
-  struct rmn_exact s = {.eos = *eos, .rho_l = rho_l, .u_l = u_l, .rho_r = rho_r, .u_r = u_r,
-                        .left = RMN_EXACT_RAREFACTION, .right = RMN_EXACT_RAREFACTION};
+  struct rmn_exact s = {.eos = *eos,
+                        .rho_l = rho_l,
+                        .u_l = u_l,
+                        .rho_r = rho_r,
+                        .u_r = u_r,
+                        .left = RMN_EXACT_RAREFACTION,
+                        .right = RMN_EXACT_RAREFACTION};
   const struct rmn_eos *e = &s.eos;
   const double vacuum_p = rmn_eos_min_pressure(e);
 
@@ -99,8 +104,14 @@ int rmn_exact_solve(const struct rmn_eos *eos, const struct rmn_params *params,
     rho_star = rmn_eos_density_from_psi(e, psi_two_rarefactions);
   } else {
     if (!ws) return RMN_EINVAL;
-    ws->star_data = (struct rmn_star_data){.eos = e, .rho_l = rho_l, .u_l = u_l, .p_l = p_l,
-                                           .psi_l = psi_l, .rho_r = rho_r, .u_r = u_r, .p_r = p_r,
+    ws->star_data = (struct rmn_star_data){.eos = e,
+                                           .rho_l = rho_l,
+                                           .u_l = u_l,
+                                           .p_l = p_l,
+                                           .psi_l = psi_l,
+                                           .rho_r = rho_r,
+                                           .u_r = u_r,
+                                           .p_r = p_r,
                                            .psi_r = psi_r};
     double lo = rho_min, hi = rho_max;
     if (GSL_FN_EVAL(&ws->star, hi) < 0.0) {

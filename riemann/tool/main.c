@@ -12,13 +12,12 @@
  * (non-convergence): exit 1. This tool depends on the riemann/ library only.
  */
 #include <errno.h>
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <gsl/gsl_errno.h>
 
 #include "sabre/riemann.h"
 
@@ -58,7 +57,8 @@ static int parse_list(const char *flag, const char *text, double *v, int lo, int
   int n = 0;
   char *save = NULL;
   for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-    if (n == hi) die_input("%s: expected at most %d comma-separated numbers, got '%s'", flag, hi, text);
+    if (n == hi)
+      die_input("%s: expected at most %d comma-separated numbers, got '%s'", flag, hi, text);
     v[n++] = parse_number(flag, tok);
   }
   if (n < lo || text[0] == ',' || text[strlen(text) - 1] == ',')
@@ -243,7 +243,8 @@ static int cmd_exact(int argc, char **argv, struct options *o) {
   struct rmn_eos eos = make_eos(o);
   if (!have_left) die_input("exact: missing --left RHO,U");
   if (!have_right) die_input("exact: missing --right RHO,U");
-  if (left[0] < 0.0 || right[0] < 0.0) die_input("exact: densities must be >= 0 (0 is a dry state)");
+  if (left[0] < 0.0 || right[0] < 0.0)
+    die_input("exact: densities must be >= 0 (0 is a dry state)");
   if (left[0] == 0.0 && right[0] == 0.0) die_input("exact: both states are dry");
   struct rmn_workspace *ws = rmn_workspace_alloc();
   if (!ws) die_status("workspace", RMN_ENOMEM);
@@ -317,10 +318,10 @@ static int cmd_sweep(int argc, char **argv, struct options *o) {
     for (long i = 0; i < val.n; ++i) {
       double v = range_at(&val, i), u = range_at(&un, j);
       struct rmn_normal_state s;
-      int st = rmn_boundary_solve_normal(&eos, &o->params, ws, rho_int, u, (enum rmn_imposed)imposed,
-                                         v, &s);
-      printf("%s,%.17g,%.17g,%.17g,%s,", imposed == RMN_IMPOSE_PRESSURE ? "pressure" : "velocity", v,
-             rho_int, u, rmn_status_name(st));
+      int st = rmn_boundary_solve_normal(&eos, &o->params, ws, rho_int, u,
+                                         (enum rmn_imposed)imposed, v, &s);
+      printf("%s,%.17g,%.17g,%.17g,%s,", imposed == RMN_IMPOSE_PRESSURE ? "pressure" : "velocity",
+             v, rho_int, u, rmn_status_name(st));
       if (st == RMN_SUCCESS)
         printf("%s,%s,%.17g,%.17g,%.17g,%.17g\n", rmn_wave_name(s.wave), rmn_flow_name(s.flow),
                s.rho, s.p, s.un, s.shock_speed);

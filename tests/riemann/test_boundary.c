@@ -1,8 +1,8 @@
 /* Boundary Riemann problem (J §III, THEORY §1.1): invariants on expansions, Rankine–Hugoniot and
  * Lax on shocks, Newton against the closed form, continuity at the expansion/shock switch,
  * consistency with the exact solver, tangential rules, batch, and every error code. */
-#include <gsl/gsl_errno.h>
 #include <float.h>
+#include <gsl/gsl_errno.h>
 #include <math.h>
 
 #include "sabre/riemann.h"
@@ -77,7 +77,8 @@ static void test_expansion_invariant(void **state) {
   }
 }
 
-/* Every shock: RH residuals ≤ 1e-12 (relative to ρc and ρc²), Lax condition, Newton = closed form. */
+/* Every shock: RH residuals ≤ 1e-12 (relative to ρc and ρc²), Lax condition, Newton = closed form.
+ */
 static void test_shock_rankine_hugoniot(void **state) {
   struct fixture *f = *state;
   sabre_fp_traps_on();
@@ -134,9 +135,9 @@ static void test_strong_shocks(void **state) {
       assert_int_equal(st, RMN_SUCCESS);
       assert_abs(s.un, u_cf, 1e-12);
       struct rmn_normal_state v;
-      assert_int_equal(rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY,
-                                                 s.un, &v),
-                       RMN_SUCCESS);
+      assert_int_equal(
+          rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY, s.un, &v),
+          RMN_SUCCESS);
       assert_rel(v.rho, s.rho, 1e-12); /* imposing the velocity found gives back the density */
       assert_rel(v.shock_speed, s.shock_speed, 1e-11);
     }
@@ -158,24 +159,24 @@ static void test_switch_continuity(void **state) {
       /* second-order term, plus the representation of ρ2 and u2 themselves (one ulp of ρ, c) */
       const double tol = 4.0 * eps + 4.0 * DBL_EPSILON / eps;
       struct rmn_normal_state a, b, va, vb;
-      assert_int_equal(rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_PRESSURE,
-                                                 p - dp, &a),
-                       RMN_SUCCESS);
-      assert_int_equal(rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_PRESSURE,
-                                                 p + dp, &b),
-                       RMN_SUCCESS);
+      assert_int_equal(
+          rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_PRESSURE, p - dp, &a),
+          RMN_SUCCESS);
+      assert_int_equal(
+          rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_PRESSURE, p + dp, &b),
+          RMN_SUCCESS);
       assert_int_equal(a.wave, RMN_WAVE_EXPANSION);
       assert_int_equal(b.wave, RMN_WAVE_SHOCK);
       /* first order: u2 − u_int = ±dp/(ρc) + O(eps²) on both sides */
       assert_abs((a.un - un) / (eps * c), -1.0, tol);
       assert_abs((b.un - un) / (eps * c), 1.0, tol);
       assert_abs((b.shock_speed - un - c) / c, 0.0, 4.0 * eps);
-      assert_int_equal(rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY,
-                                                 un - du, &va),
-                       RMN_SUCCESS);
-      assert_int_equal(rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY,
-                                                 un + du, &vb),
-                       RMN_SUCCESS);
+      assert_int_equal(
+          rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY, un - du, &va),
+          RMN_SUCCESS);
+      assert_int_equal(
+          rmn_boundary_solve_normal(&e, &f->par, f->ws, rho, un, RMN_IMPOSE_VELOCITY, un + du, &vb),
+          RMN_SUCCESS);
       assert_abs((va.rho - rho) / (eps * rho), -1.0, tol);
       assert_abs((vb.rho - rho) / (eps * rho), 1.0, tol);
     }
@@ -298,8 +299,8 @@ static void test_linearised_shock(void **state) {
   lin.shock = RMN_SHOCK_LINEARISED;
   double rho = 1000.0, un = -0.5, p = rmn_eos_pressure(&e, rho);
   struct rmn_normal_state s;
-  assert_int_equal(
-      rmn_boundary_solve_normal(&e, &lin, NULL, rho, un, RMN_IMPOSE_VELOCITY, 0.0, &s), RMN_SUCCESS);
+  assert_int_equal(rmn_boundary_solve_normal(&e, &lin, NULL, rho, un, RMN_IMPOSE_VELOCITY, 0.0, &s),
+                   RMN_SUCCESS);
   assert_rel(s.p - p, rho * un * (un - 0.0), 1e-12);
   assert_abs(s.shock_speed, 0.0, 0.0);
   assert_int_equal(

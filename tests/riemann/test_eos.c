@@ -163,9 +163,9 @@ static void test_frame(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_round_trips),     cmocka_unit_test(test_increments_small),
-      cmocka_unit_test(test_derivatives),     cmocka_unit_test(test_reference_values),
-      cmocka_unit_test(test_eos_errors),      cmocka_unit_test(test_frame),
+      cmocka_unit_test(test_round_trips), cmocka_unit_test(test_increments_small),
+      cmocka_unit_test(test_derivatives), cmocka_unit_test(test_reference_values),
+      cmocka_unit_test(test_eos_errors),  cmocka_unit_test(test_frame),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

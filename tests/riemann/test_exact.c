@@ -176,8 +176,8 @@ static void test_random_problems(void **state) {
             ++n_shock;
             double res[2];
             /* residuals of the moving shock between the star state and the data */
-            rmn_shock_residuals(&e, side_rho[side], side_u[side], s.rho_star, s.u_star,
-                                speed[side], res);
+            rmn_shock_residuals(&e, side_rho[side], side_u[side], s.rho_star, s.u_star, speed[side],
+                                res);
             double scale = side_rho[side] * (e.c0 + fabs(side_u[side]));
             assert_abs(res[0] / scale, 0.0, 1e-10);
             assert_abs(res[1] / (scale * (e.c0 + fabs(side_u[side]))), 0.0, 1e-10);
@@ -205,8 +205,7 @@ static void test_random_problems(void **state) {
         double xi = e.c0 * sabre_rng_uniform(&rng, -4, 4), r1, u1, r2, u2;
         rmn_exact_sample(&s, xi, &r1, &u1);
         rmn_exact_sample(&m, -xi, &r2, &u2);
-        if (fabs(xi - s.left_head) < 1e-9 * e.c0 || fabs(xi - s.right_head) < 1e-9 * e.c0)
-          continue;
+        if (fabs(xi - s.left_head) < 1e-9 * e.c0 || fabs(xi - s.right_head) < 1e-9 * e.c0) continue;
         assert_rel(r2, r1, 1e-11);
         if (r1 > 0.0) assert_abs(u2, -u1, 1e-11 * e.c0);
       }
@@ -271,7 +270,7 @@ static void test_errors(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_ritter),     cmocka_unit_test(test_stoker),
+      cmocka_unit_test(test_ritter),          cmocka_unit_test(test_stoker),
       cmocka_unit_test(test_random_problems), cmocka_unit_test(test_dry_states),
       cmocka_unit_test(test_errors),
   };

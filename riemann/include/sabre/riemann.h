@@ -4,9 +4,9 @@
  *
  *     ∂ρ/∂t + ∂(ρu)/∂x = 0,   ∂(ρu)/∂t + ∂(ρu² + p(ρ))/∂x = 0,
  *
- * with the Tait equation of state. Equation numbers J(n) refer to Joly et al., SPHERIC 2016; "THEORY"
- * to shared/THEORY.md. All quantities are SI: ρ in kg/m³, p in Pa (relative to the reference state,
- * so p(ρ0) = 0), velocities and sound speeds in m/s.
+ * with the Tait equation of state. Equation numbers J(n) refer to Joly et al., SPHERIC 2016;
+ * "THEORY" to shared/THEORY.md. All quantities are SI: ρ in kg/m³, p in Pa (relative to the
+ * reference state, so p(ρ0) = 0), velocities and sound speeds in m/s.
  *
  * Conventions (GSL/SUNDIALS style):
  *   - every fallible function returns an int status, RMN_SUCCESS (0) or one of enum rmn_status;
@@ -33,15 +33,16 @@ extern "C" {
 /* ---------------------------------------------------------------------------------------------
  * Status codes. One X-macro list generates the enum and rmn_strerror().
  * ------------------------------------------------------------------------------------------- */
-#define RMN_STATUS_LIST(X)                                                                        \
-  X(RMN_SUCCESS, 0, "success")                                                                    \
-  X(RMN_EINVAL, 1, "invalid argument (NaN, infinite, or out of the documented range)")            \
-  X(RMN_EDENSITY, 2, "non-positive density in a state that must be wet")                          \
-  X(RMN_ESUPERSONIC, 3, "state is not subsonic: |u_n| >= c, the boundary problem needs subsonic flow") \
-  X(RMN_ECAVITATION, 4, "cavitation: the imposed data require a density <= 0 (vacuum)")           \
-  X(RMN_ENOCONV, 5, "iterative solve did not converge")                                           \
-  X(RMN_ENOMEM, 6, "memory allocation failed")                                                    \
-  X(RMN_ELAX, 7, "shock result violates the Lax entropy condition")                               \
+#define RMN_STATUS_LIST(X)                                                              \
+  X(RMN_SUCCESS, 0, "success")                                                          \
+  X(RMN_EINVAL, 1, "invalid argument (NaN, infinite, or out of the documented range)")  \
+  X(RMN_EDENSITY, 2, "non-positive density in a state that must be wet")                \
+  X(RMN_ESUPERSONIC, 3,                                                                 \
+    "state is not subsonic: |u_n| >= c, the boundary problem needs subsonic flow")      \
+  X(RMN_ECAVITATION, 4, "cavitation: the imposed data require a density <= 0 (vacuum)") \
+  X(RMN_ENOCONV, 5, "iterative solve did not converge")                                 \
+  X(RMN_ENOMEM, 6, "memory allocation failed")                                          \
+  X(RMN_ELAX, 7, "shock result violates the Lax entropy condition")                     \
   X(RMN_EUNDEFINED, 8, "linearised shock undefined for a zero interior normal velocity")
 
 enum rmn_status {
@@ -91,13 +92,28 @@ double rmn_eos_min_pressure(const struct rmn_eos *eos);
 /** (ρ/ρ0)^ξ with fast integer paths. */
 static inline double rmn_eos_ratio_xi_(const struct rmn_eos *e, double r) {
   switch (e->integer_xi) {
-    case 2: return r * r;
-    case 3: return r * r * r;
-    case 4: { double r2 = r * r; return r2 * r2; }
-    case 5: { double r2 = r * r; return r2 * r2 * r; }
-    case 6: { double r3 = r * r * r; return r3 * r3; }
-    case 7: { double r3 = r * r * r; return r3 * r3 * r; }
-    default: return pow(r, e->xi);
+    case 2:
+      return r * r;
+    case 3:
+      return r * r * r;
+    case 4: {
+      double r2 = r * r;
+      return r2 * r2;
+    }
+    case 5: {
+      double r2 = r * r;
+      return r2 * r2 * r;
+    }
+    case 6: {
+      double r3 = r * r * r;
+      return r3 * r3;
+    }
+    case 7: {
+      double r3 = r * r * r;
+      return r3 * r3 * r;
+    }
+    default:
+      return pow(r, e->xi);
   }
 }
 
@@ -121,8 +137,7 @@ static inline double rmn_eos_pressure_increment(const struct rmn_eos *e, double 
  * Density increment δρ such that p(ρ_ref + δρ) − p(ρ_ref) = δp [kg/m³], the inverse of
  * rmn_eos_pressure_increment, accurate for small δp. Requires p(ρ_ref) + δp > p(0) (else NaN).
  */
-static inline double rmn_eos_density_increment(const struct rmn_eos *e, double rho_ref,
-                                               double dp) {
+static inline double rmn_eos_density_increment(const struct rmn_eos *e, double rho_ref, double dp) {
   if (e->isothermal) return dp / (e->c0 * e->c0);
   return rho_ref * expm1(log1p(dp / (e->b * rmn_eos_ratio_xi_(e, rho_ref / e->rho0))) / e->xi);
 }
@@ -188,7 +203,8 @@ static inline double rmn_eos_density_from_psi(const struct rmn_eos *e, double ps
 /* ---------------------------------------------------------------------------------------------
  * Generalised Riemann invariants J(21–23) of the local normal problem J(16–18).
  * ------------------------------------------------------------------------------------------- */
-/** R−1 = u_n + ψ(ρ) [m/s], J(21): conserved across a λ−1 expansion (left fan of the full problem). */
+/** R−1 = u_n + ψ(ρ) [m/s], J(21): conserved across a λ−1 expansion (left fan of the full problem).
+ */
 static inline double rmn_invariant_minus(const struct rmn_eos *e, double rho, double un) {
   return un + rmn_eos_psi(e, rho);
 }
@@ -223,8 +239,9 @@ void rmn_frame_to_global(const struct rmn_frame *frame, const double *local, dou
  * Solver parameters and workspace.
  * ------------------------------------------------------------------------------------------- */
 enum rmn_shock_model {
-  RMN_SHOCK_EXACT = 0,     /**< moving-shock Rankine–Hugoniot (THEORY §1.1), the default */
-  RMN_SHOCK_LINEARISED = 1 /**< GPUSPH-style p2 − p_int = ρ_int u_int (u_int − u2); comparison only */
+  RMN_SHOCK_EXACT = 0, /**< moving-shock Rankine–Hugoniot (THEORY §1.1), the default */
+  RMN_SHOCK_LINEARISED =
+      1 /**< GPUSPH-style p2 − p_int = ρ_int u_int (u_int − u2); comparison only */
 };
 
 struct rmn_params {
@@ -293,24 +310,24 @@ int rmn_boundary_solve_normal(const struct rmn_eos *eos, const struct rmn_params
 
 /** One boundary segment's input: geometry, interior state and imposed data. */
 struct rmn_boundary_input {
-  double normal[3];        /**< normal into the fluid (dim components, any length > 0) */
-  double rho;              /**< interior density [kg/m³] (SPH: Shepard value J 33–35) */
-  double u[3];             /**< interior velocity, global frame (dim components) [m/s] */
-  enum rmn_imposed imposed;/**< which quantity is imposed */
-  double value;            /**< imposed pressure [Pa] or normal velocity [m/s] */
-  double ut[2];            /**< tangential velocity imposed on inflow, local (t1, t2) [m/s]; use 0 */
+  double normal[3];         /**< normal into the fluid (dim components, any length > 0) */
+  double rho;               /**< interior density [kg/m³] (SPH: Shepard value J 33–35) */
+  double u[3];              /**< interior velocity, global frame (dim components) [m/s] */
+  enum rmn_imposed imposed; /**< which quantity is imposed */
+  double value;             /**< imposed pressure [Pa] or normal velocity [m/s] */
+  double ut[2]; /**< tangential velocity imposed on inflow, local (t1, t2) [m/s]; use 0 */
 };
 
 /** One boundary segment's result. */
 struct rmn_boundary_result {
-  double rho, p;           /**< segment density [kg/m³] and pressure [Pa] */
-  double u[3];             /**< segment velocity, global frame (dim components) [m/s] */
-  double un;               /**< normal component [m/s] */
-  double ut[2];            /**< tangential components on (t1, t2) [m/s] */
+  double rho, p; /**< segment density [kg/m³] and pressure [Pa] */
+  double u[3];   /**< segment velocity, global frame (dim components) [m/s] */
+  double un;     /**< normal component [m/s] */
+  double ut[2];  /**< tangential components on (t1, t2) [m/s] */
   enum rmn_wave wave;
   enum rmn_flow flow;
-  double shock_speed;      /**< as in struct rmn_normal_state */
-  int status;              /**< RMN_SUCCESS or the error of this segment */
+  double shock_speed; /**< as in struct rmn_normal_state */
+  int status;         /**< RMN_SUCCESS or the error of this segment */
 };
 
 /**
@@ -358,16 +375,16 @@ enum rmn_exact_wave { RMN_EXACT_RAREFACTION = 0, RMN_EXACT_SHOCK = 1 };
 const char *rmn_exact_wave_name(enum rmn_exact_wave wave);
 
 struct rmn_exact {
-  struct rmn_eos eos;            /**< copy of the equation of state used */
-  double rho_l, u_l, rho_r, u_r; /**< data */
+  struct rmn_eos eos;              /**< copy of the equation of state used */
+  double rho_l, u_l, rho_r, u_r;   /**< data */
   double rho_star, u_star, p_star; /**< star state; with vacuum ρ* = 0, u* = NaN, p* = p(0) */
   enum rmn_exact_wave left, right; /**< wave types (vacuum: both rarefactions) */
-  int vacuum;                    /**< 1 when a vacuum (dry) region exists (or a side is dry) */
+  int vacuum;                      /**< 1 when a vacuum (dry) region exists (or a side is dry) */
   /** Wave speeds [m/s]: a shock has head == tail == its speed; a rarefaction fan runs from head
    *  (outermost characteristic) to tail. Vacuum fronts are the tails. For ξ = 1 with a dry side
    *  the fan reaches infinity (tail = ∓HUGE_VAL). */
   double left_head, left_tail, right_head, right_tail;
-  int iterations;                /**< root-finder iterations (0 for closed forms) */
+  int iterations; /**< root-finder iterations (0 for closed forms) */
 };
 
 /**

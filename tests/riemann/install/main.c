@@ -1,8 +1,7 @@
 /* Outside consumer of the installed riemann library: water hammer against Joukowsky. */
 #include <math.h>
-#include <stdio.h>
-
 #include <sabre/riemann.h>
+#include <stdio.h>
 
 int main(void) {
   struct rmn_eos eos;

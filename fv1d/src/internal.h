@@ -24,6 +24,7 @@ struct fv1d_solver {
   struct fv1d_boundary_state bnd[2];
   char err[512];
   void *integrator; /* ARKODE memory while integrating */
+  long arkode_rhs_calls; /* right-hand sides evaluated for ARKODE (stages) */
 };
 
 /** Set the solver error message (printf style). */

@@ -223,7 +223,10 @@ typedef int (*fv1d_observer_fn)(struct fv1d_solver *s, enum fv1d_event event, lo
 
 /** Statistics of a run. */
 struct fv1d_stats {
-  long steps, rhs_evals, failed_steps;
+  long steps;            /**< accepted steps */
+  long rhs_evals;        /**< right-hand sides evaluated by the integrator (RK stages) */
+  long arkode_rhs_evals; /**< ARKODE's own count (ERKStepGetNumRhsEvals) */
+  long failed_steps;     /**< error-test failures (adaptive) */
   double wall_time; /**< [s] */
 };
 

@@ -1,0 +1,336 @@
+/*
+ * γ and ∇γ_as in 3D, closed form (docs/sph-gamma.md §5). The triangle lies on a plane at signed
+ * distance δ from a (δ > 0 on the fluid side); p is the foot point of a. Both integrals are of a
+ * radial function over the triangle clipped to the support disc (radius R = √(4h² − δ²) around p).
+ * In polar coordinates centred on p, the triangle is the signed sum of the three sub-triangles
+ * (p, x_j, x_{j+1}); along the edge x_j x_{j+1} (abscissa s from the foot of p on the edge's line,
+ * signed distance d from p to that line) dθ = d ds/(d² + s²) and the radial integral is done in
+ * closed form, leaving for each monomial q^k (q² = c² + s², c² = δ̂² + d²)
+ *   E_k = d ∫ (q^k − |δ̂|^k)/(d² + s²) ds,
+ * which is again closed form: a polynomial for even k, and for odd k
+ *   E_1 = d Δasinh(s/c) + |δ̂| (ΔA − Δθ),  E_k = d ΔL_{k−2} + δ̂² E_{k−2},
+ * where Δθ is the angle swept along the edge, ΔA = Δatan(|δ̂| s/(d q)) (their difference is the
+ * solid angle of the sub-triangle) and L_k = ∫ q^k ds as in 2D. The parts of an edge outside the
+ * support disc contribute the constant radial integral up to R times their angle.
+ */
+#include <math.h>
+
+#include "kernel.h"
+#include "walls/gamma_impl.h"
+
+struct tri_frame {
+  double nu[3];   /* unit normal, oriented like the element's normal */
+  double delta;   /* signed distance of a from the plane [m] */
+  double p[3][2]; /* vertices in the plane, relative to the foot point of a, frame (e1, e2) [m] */
+  double sigma;   /* +1 if the vertices turn counter-clockwise about nu, else −1 */
+};
+
+static inline double dot3(const double *u, const double *v) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+static inline void cross3(const double *u, const double *v, double *w) {
+  w[0] = u[1] * v[2] - u[2] * v[1];
+  w[1] = u[2] * v[0] - u[0] * v[2];
+  w[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+static void frame(const struct sph_wall_element *e, const double *a, struct tri_frame *f) {
+  double d1[3], d2[3], c[3], e1[3], e2[3];
+  for (int i = 0; i < 3; i++) {
+    d1[i] = e->x[1][i] - e->x[0][i];
+    d2[i] = e->x[2][i] - e->x[0][i];
+  }
+  cross3(d1, d2, c);
+  const double cn = sqrt(dot3(c, c));
+  f->sigma = dot3(c, e->normal) >= 0.0 ? 1.0 : -1.0;
+  const double l1 = sqrt(dot3(d1, d1));
+  for (int i = 0; i < 3; i++) {
+    f->nu[i] = f->sigma * c[i] / cn;
+    e1[i] = d1[i] / l1;
+  }
+  cross3(f->nu, e1, e2);
+  /* δ from the nearest vertex: relative round-off for points close to a vertex or edge */
+  double best = INFINITY;
+  for (int j = 0; j < 3; j++) {
+    double r[3];
+    for (int i = 0; i < 3; i++) r[i] = e->x[j][i] - a[i];
+    f->p[j][0] = dot3(r, e1);
+    f->p[j][1] = dot3(r, e2);
+    const double r2 = dot3(r, r);
+    if (r2 < best) {
+      best = r2;
+      f->delta = -dot3(r, f->nu);
+    }
+  }
+}
+
+/* Per-triangle constants of the edge integrals (units of h). */
+struct tri_consts {
+  double dh, adh, sgn, D; /* δ̂, |δ̂|, sign(δ̂) (0 if δ̂ = 0), δ̂² */
+  double R2;              /* R̂² = 4 − δ̂² */
+  double out_w, out_g; /* integrands of ∫_T w and of the γ term beyond the support, per angle */
+};
+
+/* g(q) = ∫_0^q f u du and H(q) − (4/21)/q = ∫ (∫_0^q f u² du − 4/21)/q² dq, polynomial parts. */
+static double g_poly(double q) {
+  const double q2 = q * q, q4 = q2 * q2;
+  return 0.5 * q2 + q4 * (-0.625 + q * (0.5 + q * (-5.0 / 32.0 + q / 56.0)));
+}
+static double h_poly(double q) {
+  const double q2 = q * q, q4 = q2 * q2;
+  return q2 / 6.0 + q4 * (-0.125 + q * (1.0 / 12.0 + q * (-5.0 / 224.0 + q / 448.0)));
+}
+
+static void consts(double dh, struct tri_consts *t) {
+  t->dh = dh;
+  t->adh = fabs(dh);
+  t->sgn = dh > 0.0 ? 1.0 : (dh < 0.0 ? -1.0 : 0.0);
+  t->D = dh * dh;
+  t->R2 = 4.0 - t->D;
+  t->out_w = g_poly(2.0) - g_poly(t->adh);
+  /* −δ̂ [H(2) − H(|δ̂|)], the 1/q part written so that δ̂ → 0 is regular */
+  t->out_g = -dh * (h_poly(2.0) - h_poly(t->adh)) - 2.0 / 21.0 * dh + 4.0 / 21.0 * t->sgn;
+}
+
+/* Edge piece outside the support disc, abscissae sa < sb. */
+static void piece_outside(const struct tri_consts *t, double d, double sa, double sb, double *iw,
+                          double *ig) {
+  const double dtheta = atan2(d * (sb - sa), d * d + sa * sb);
+  *iw += t->out_w * dtheta;
+  *ig += t->out_g * dtheta;
+}
+
+struct edge_terms {
+  double v0, v1, v2;      /* ∫ (d² + s²)^j ds, j = 0, 1, 2 */
+  double lm1, l1, l3, l5; /* ∫ q^k ds, k = −1, 1, 3, 5 */
+  double q;
+};
+
+static void edge_antiderivatives(double d2, double c, double c2, double s, struct edge_terms *r) {
+  const double s2 = s * s, s3 = s2 * s;
+  const double q = sqrt(c2 + s2), q2 = q * q;
+  r->q = q;
+  r->v0 = s;
+  r->v1 = d2 * s + s3 / 3.0;
+  r->v2 = d2 * d2 * s + 2.0 / 3.0 * d2 * s3 + s3 * s2 / 5.0;
+  r->lm1 = asinh(s / c);
+  r->l1 = 0.5 * (s * q + c2 * r->lm1);
+  r->l3 = 0.25 * (s * q2 * q + 3.0 * c2 * r->l1);
+  r->l5 = (s * q2 * q2 * q + 5.0 * c2 * r->l3) / 6.0;
+}
+
+/* Edge piece inside the support disc, abscissae sa < sb. */
+static void piece_inside(const struct tri_consts *t, double d, double sa, double sb, double *iw,
+                         double *ig) {
+  const double d2 = d * d, c2 = t->D + d2, c = sqrt(c2), D = t->D;
+  struct edge_terms ra, rb;
+  edge_antiderivatives(d2, c, c2, sa, &ra);
+  edge_antiderivatives(d2, c, c2, sb, &rb);
+  const double dtheta = atan2(d * (sb - sa), d2 + sa * sb);
+  const double dA = atan2(t->adh * d * (sb * ra.q - sa * rb.q), d2 * ra.q * rb.q + D * sa * sb);
+  const double v0 = rb.v0 - ra.v0, v1 = rb.v1 - ra.v1, v2 = rb.v2 - ra.v2;
+  const double e2 = d * v0;
+  const double e4 = d * (2.0 * D * v0 + v1);
+  const double e6 = d * (3.0 * D * D * v0 + 3.0 * D * v1 + v2);
+  const double e1 = d * (rb.lm1 - ra.lm1) + t->adh * (dA - dtheta);
+  const double e3 = d * (rb.l1 - ra.l1) + D * e1;
+  const double e5 = d * (rb.l3 - ra.l3) + D * e3;
+  const double e7 = d * (rb.l5 - ra.l5) + D * e5;
+  *iw += 0.5 * e2 - 0.625 * e4 + 0.5 * e5 - 5.0 / 32.0 * e6 + e7 / 56.0;
+  *ig += -t->dh * (e2 / 6.0 - 0.125 * e4 + e5 / 12.0 - 5.0 / 224.0 * e6 + e7 / 448.0) +
+         4.0 / 21.0 * t->sgn * (dtheta - dA);
+}
+
+/* Sub-triangle (p, A, B), A and B in units of h relative to the foot point p. Adds the angle swept
+ * to *theta and returns whether part of the edge lies inside the support disc. */
+static int edge_integrals(const struct tri_consts *t, const double *A, const double *B, double *iw,
+                          double *ig, double *theta) {
+  double ex = B[0] - A[0], ey = B[1] - A[1];
+  const double len = hypot(ex, ey);
+  ex /= len;
+  ey /= len;
+  const double sA = A[0] * ex + A[1] * ey, sB = B[0] * ex + B[1] * ey;
+  /* cross(X, e) for X on the edge: dθ/ds = d/(d² + s²); from the endpoint nearer to p */
+  const double d = (A[0] * A[0] + A[1] * A[1] < B[0] * B[0] + B[1] * B[1]) ? A[0] * ey - A[1] * ex
+                                                                           : B[0] * ey - B[1] * ex;
+  const double S2 = t->R2 - d * d;
+  /* p on the edge's line: the sub-triangle has no area (|d| ≥ 1e-150 keeps asinh(s/c) finite),
+   * but the edge may still cross the disc. */
+  if (fabs(d) < 1e-150) return S2 > 0.0 && sA < sqrt(S2) && sB > -sqrt(S2);
+  *theta += atan2(d * (sB - sA), d * d + sA * sB);
+  if (S2 <= 0.0) {
+    piece_outside(t, d, sA, sB, iw, ig);
+    return 0;
+  }
+  const double S = sqrt(S2);
+  const double lo = fmax(sA, -S), hi = fmin(sB, S);
+  if (lo < hi) piece_inside(t, d, lo, hi, iw, ig);
+  if (sA < -S) piece_outside(t, d, sA, fmin(sB, -S), iw, ig);
+  if (sB > S) piece_outside(t, d, fmax(sA, S), sB, iw, ig);
+  return lo < hi;
+}
+
+/* Solid angle of the spherical triangle of unit vectors u, v, w (Van Oosterom & Strackee 1983). */
+static double solid_angle(const double *u, const double *v, const double *w) {
+  double vw[3];
+  cross3(v, w, vw);
+  return 2.0 * atan2(fabs(dot3(u, vw)), 1.0 + dot3(u, v) + dot3(v, w) + dot3(w, u));
+}
+
+enum incidence { OUTSIDE, VERTEX, EDGE, INTERIOR };
+
+/* Where a lies on the closed triangle, given |δ| ≤ tol; *j is the vertex, or the edge j → j+1. */
+static enum incidence classify(const struct sph_kernel *k, const double *a,
+                               const struct sph_wall_element *e, const struct tri_frame *f,
+                               int *j) {
+  const double tol = SPH_GAMMA_PLANE_TOL * k->h;
+  for (*j = 0; *j < 3; (*j)++) {
+    double r[3];
+    for (int i = 0; i < 3; i++) r[i] = a[i] - e->x[*j][i];
+    if (sqrt(dot3(r, r)) <= tol) return VERTEX;
+  }
+  for (*j = 0; *j < 3; (*j)++) {
+    const double *x0 = e->x[*j], *x1 = e->x[(*j + 1) % 3];
+    double u[3], r[3];
+    for (int i = 0; i < 3; i++) {
+      u[i] = x1[i] - x0[i];
+      r[i] = a[i] - x0[i];
+    }
+    const double t = dot3(r, u) / dot3(u, u);
+    if (t <= 0.0 || t >= 1.0) continue;
+    for (int i = 0; i < 3; i++) r[i] -= t * u[i];
+    if (sqrt(dot3(r, r)) <= tol) return EDGE;
+  }
+  for (int i = 0; i < 3; i++) {
+    const double *P = f->p[i], *Q = f->p[(i + 1) % 3];
+    /* interior: the foot point (origin) is strictly left of every edge when counter-clockwise */
+    if (f->sigma * ((Q[0] - P[0]) * (-P[1]) - (Q[1] - P[1]) * (-P[0])) <= 0.0) return OUTSIDE;
+  }
+  return INTERIOR;
+}
+
+static void unit_to(const double *a, const double *x, double *u) {
+  for (int i = 0; i < 3; i++) u[i] = x[i] - a[i];
+  const double n = sqrt(dot3(u, u));
+  for (int i = 0; i < 3; i++) u[i] /= n;
+}
+
+/* Limit of gamma_term for a on the plane, approaching along m: the solid angle under which
+ * a + ε m sees the triangle, over 4π (docs/sph-gamma.md §5.3). */
+static double limit_term(const struct sph_kernel *k, const double *a,
+                         const struct sph_wall_element *e, const struct tri_frame *f,
+                         const double *m) {
+  const double *mm = m == NULL ? f->nu : m;
+  const double side = dot3(mm, f->nu) > 0.0 ? 1.0 : -1.0;
+  const double mneg[3] = {-mm[0], -mm[1], -mm[2]};
+  int j;
+  double omega = 0.0, uk[3], ul[3], uj[3];
+  switch (classify(k, a, e, f, &j)) {
+    case VERTEX:
+      unit_to(a, e->x[(j + 1) % 3], uk);
+      unit_to(a, e->x[(j + 2) % 3], ul);
+      omega = solid_angle(mneg, uk, ul);
+      break;
+    case EDGE: /* split at a into (a, x_{j+1}, x_{j+2}) and (a, x_{j+2}, x_j) */
+      unit_to(a, e->x[j], uj);
+      unit_to(a, e->x[(j + 1) % 3], uk);
+      unit_to(a, e->x[(j + 2) % 3], ul);
+      omega = solid_angle(mneg, uk, ul) + solid_angle(mneg, ul, uj);
+      break;
+    case INTERIOR:
+      omega = 2.0 * SPH_PI;
+      break;
+    case OUTSIDE:
+      break;
+  }
+  return side * omega / (4.0 * SPH_PI);
+}
+
+void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
+                         const struct sph_wall_element *e, const double *m, double *term,
+                         double grad[3]) {
+  struct tri_frame f;
+  frame(e, a, &f);
+  grad[0] = grad[1] = grad[2] = 0.0;
+  *term = 0.0;
+  const double h = k->h;
+  if (fabs(f.delta) >= 2.0 * h) return;
+  const int on_plane = fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * h;
+  struct tri_consts t;
+  consts(on_plane ? 0.0 : f.delta * k->inv_h, &t);
+  double P[3][2];
+  for (int j = 0; j < 3; j++) {
+    P[j][0] = f.p[j][0] * k->inv_h;
+    P[j][1] = f.p[j][1] * k->inv_h;
+  }
+  /* Cull on the bounding circle of the triangle before the edge integrals. */
+  const double cx = (P[0][0] + P[1][0] + P[2][0]) / 3.0, cy = (P[0][1] + P[1][1] + P[2][1]) / 3.0;
+  double rad = 0.0;
+  for (int j = 0; j < 3; j++) rad = fmax(rad, hypot(P[j][0] - cx, P[j][1] - cy));
+  if (hypot(cx, cy) - rad >= sqrt(t.R2)) return; /* also the on-plane limit: a is off s */
+  double iw = 0.0, ig = 0.0, theta = 0.0;
+  int cut = 0;
+  for (int j = 0; j < 3; j++) cut |= edge_integrals(&t, P[j], P[(j + 1) % 3], &iw, &ig, &theta);
+  if (!cut) {
+    /* No edge enters the disc: the disc is outside the triangle (exactly 0, not round-off) or
+     * inside it (the whole disc). */
+    const double full = fabs(theta) > SPH_PI ? (theta > 0.0 ? 2.0 * SPH_PI : -2.0 * SPH_PI) : 0.0;
+    iw = t.out_w * full;
+    ig = t.out_g * full;
+  }
+  const double gw = f.sigma * SPH_WENDLAND_ALPHA3 * k->inv_h * iw;
+  for (int i = 0; i < 3; i++) grad[i] = gw * e->normal[i];
+  *term = on_plane ? limit_term(k, a, e, &f, m) : f.sigma * SPH_WENDLAND_ALPHA3 * ig;
+}
+
+int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,
+                         const struct sph_wall_element *e, double m[3]) {
+  struct tri_frame f;
+  frame(e, a, &f);
+  if (fabs(f.delta) > SPH_GAMMA_PLANE_TOL * k->h) return 0;
+  int j;
+  double weight;
+  switch (classify(k, a, e, &f, &j)) {
+    case VERTEX: {
+      double u[3], v[3], c[3];
+      for (int i = 0; i < 3; i++) {
+        u[i] = e->x[(j + 1) % 3][i] - e->x[j][i];
+        v[i] = e->x[(j + 2) % 3][i] - e->x[j][i];
+      }
+      cross3(u, v, c);
+      weight = atan2(sqrt(dot3(c, c)), dot3(u, v));
+      break;
+    }
+    case EDGE:
+      weight = SPH_PI;
+      break;
+    case INTERIOR:
+      weight = 2.0 * SPH_PI;
+      break;
+    default:
+      return 0;
+  }
+  for (int i = 0; i < 3; i++) m[i] += weight * f.nu[i];
+  return 1;
+}
+
+int sph_gamma3d_check(const struct sph_wall_element *e) {
+  for (int i = 0; i < 3; i++)
+    if (!isfinite(e->x[0][i]) || !isfinite(e->x[1][i]) || !isfinite(e->x[2][i]) ||
+        !isfinite(e->normal[i]))
+      return -1;
+  double d1[3], d2[3], c[3];
+  for (int i = 0; i < 3; i++) {
+    d1[i] = e->x[1][i] - e->x[0][i];
+    d2[i] = e->x[2][i] - e->x[0][i];
+  }
+  cross3(d1, d2, c);
+  const double area2 = sqrt(dot3(c, c));
+  const double nn = sqrt(dot3(e->normal, e->normal));
+  if (!isfinite(area2) || !isfinite(nn) || area2 <= 0.0 || fabs(nn - 1.0) > 1e-6) return -1;
+  const double l1 = sqrt(dot3(d1, d1)), l2 = sqrt(dot3(d2, d2));
+  if (area2 <= 1e-12 * l1 * l2) return -1; /* collinear vertices */
+  return (fabs(dot3(d1, e->normal)) <= 1e-6 * l1 && fabs(dot3(d2, e->normal)) <= 1e-6 * l2) ? 0
+                                                                                            : -1;
+}

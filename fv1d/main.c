@@ -5,13 +5,12 @@
  *                      [--domain A:B] [--x0 X0] --output FILE.csv
  * Bad command lines and case files end with a one-line error and exit status 2; failed runs with
  * exit status 1. */
+#include <gsl/gsl_errno.h>
 #include <math.h>
+#include <sabre/fv1d.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <gsl/gsl_errno.h>
-#include <sabre/fv1d.h>
 
 static const char usage[] =
     "usage: sabre-fv1d CASE.yaml [--set key=value]... [--output DIR] [--quiet]\n"
@@ -28,7 +27,8 @@ static int choice_index(const char *const *names, const char *value) {
 
 static double parse_number(const char *flag, const char *text) {
   double v;
-  if (cmn_parse_double(text, &v) != 0) cmn_input_error("%s: expected a number, got '%s'", flag, text);
+  if (cmn_parse_double(text, &v) != 0)
+    cmn_input_error("%s: expected a number, got '%s'", flag, text);
   return v;
 }
 
@@ -48,12 +48,18 @@ static int run_riemann(int argc, char **argv) {
     }
     if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", flag);
     const char *v = argv[++k];
-    if (strcmp(flag, "--xi") == 0) xi = parse_number(flag, v);
-    else if (strcmp(flag, "--rho0") == 0) rho0 = parse_number(flag, v);
-    else if (strcmp(flag, "--c0") == 0) c0 = parse_number(flag, v);
-    else if (strcmp(flag, "--time") == 0) t_end = parse_number(flag, v);
-    else if (strcmp(flag, "--cfl") == 0) cfl = parse_number(flag, v);
-    else if (strcmp(flag, "--x0") == 0) x0 = parse_number(flag, v);
+    if (strcmp(flag, "--xi") == 0)
+      xi = parse_number(flag, v);
+    else if (strcmp(flag, "--rho0") == 0)
+      rho0 = parse_number(flag, v);
+    else if (strcmp(flag, "--c0") == 0)
+      c0 = parse_number(flag, v);
+    else if (strcmp(flag, "--time") == 0)
+      t_end = parse_number(flag, v);
+    else if (strcmp(flag, "--cfl") == 0)
+      cfl = parse_number(flag, v);
+    else if (strcmp(flag, "--x0") == 0)
+      x0 = parse_number(flag, v);
     else if (strcmp(flag, "--left") == 0 || strcmp(flag, "--right") == 0) {
       double *st = flag[2] == 'l' ? left : right;
       if (cmn_parse_doubles(v, st, 2) != 2)
@@ -76,13 +82,16 @@ static int run_riemann(int argc, char **argv) {
       a = strtod(v, &end);
       if (end == v || *end != ':' || cmn_parse_double(end + 1, &b) != 0 || !isfinite(a))
         cmn_input_error("--domain: expected A:B, got '%s'", v);
-    } else if (strcmp(flag, "--output") == 0) output = v;
-    else cmn_input_error("unknown option '%s' (see --help)", flag);
+    } else if (strcmp(flag, "--output") == 0)
+      output = v;
+    else
+      cmn_input_error("unknown option '%s' (see --help)", flag);
   }
   if (isnan(xi) || isnan(rho0) || isnan(c0) || isnan(t_end) || !have_left || !have_right ||
       cells == 0 || !output)
-    cmn_input_error("riemann: --xi, --rho0, --c0, --left, --right, --cells, --time and --output "
-                    "are required (see --help)");
+    cmn_input_error(
+        "riemann: --xi, --rho0, --c0, --left, --right, --cells, --time and --output "
+        "are required (see --help)");
   if (rmn_eos_init(&p.eos, rho0, c0, xi) != RMN_SUCCESS)
     cmn_input_error("riemann: need rho0 > 0, c0 > 0 and xi >= 1 (got %g, %g, %g)", rho0, c0, xi);
   if (!(t_end > 0.0)) cmn_input_error("--time: must be positive, got %g", t_end);
@@ -145,7 +154,10 @@ int main(int argc, char **argv) {
   char base_dir[4096];
   snprintf(base_dir, sizeof base_dir, "%s", case_path);
   char *slash = strrchr(base_dir, '/');
-  if (slash) *slash = '\0'; else snprintf(base_dir, sizeof base_dir, ".");
+  if (slash)
+    *slash = '\0';
+  else
+    snprintf(base_dir, sizeof base_dir, ".");
   struct fv1d_params p;
   fv1d_case_read(c, base_dir, &p); /* fatal mode: exits with the message on bad input */
   if (quiet) p.progress = 0;
@@ -160,13 +172,16 @@ int main(int argc, char **argv) {
   if (!out) cmn_error("%s", fv1d_solver_error(s));
   struct fv1d_stats stats;
   int status = fv1d_integrate(s, fv1d_output_observer, out, &stats);
-  if (fv1d_output_close(out, &stats, status) != 0) cmn_error("cannot write the outputs in '%s'", output);
+  if (fv1d_output_close(out, &stats, status) != 0)
+    cmn_error("cannot write the outputs in '%s'", output);
   if (status != 0) cmn_error("run failed: %s", fv1d_solver_error(s));
   if (!quiet)
-    cmn_message("%ld steps, %ld RHS evaluations, %.3g s wall, %.3g cell updates/s per stage; "
-                "outputs in %s", stats.steps, stats.rhs_evals, stats.wall_time,
-                stats.wall_time > 0 ? (double)p.cells * (double)stats.rhs_evals / stats.wall_time
-                                    : 0.0, output);
+    cmn_message(
+        "%ld steps, %ld RHS evaluations, %.3g s wall, %.3g cell updates/s per stage; "
+        "outputs in %s",
+        stats.steps, stats.rhs_evals, stats.wall_time,
+        stats.wall_time > 0 ? (double)p.cells * (double)stats.rhs_evals / stats.wall_time : 0.0,
+        output);
   fv1d_solver_destroy(s);
   fv1d_params_free(&p);
   cmn_case_free(c);

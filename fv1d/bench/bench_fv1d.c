@@ -1,12 +1,11 @@
 /* bench-fv1d: cell updates per second per RK stage (one right-hand-side evaluation = one stage)
  * for N = 1e4 and 1e6 cells, each flux, MC reconstruction, on a smooth periodic acoustic field
  * with small noise so that the exact Godunov solver iterates at every face. Brief on purpose. */
+#include <gsl/gsl_errno.h>
 #include <math.h>
+#include <sabre/fv1d.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-#include <gsl/gsl_errno.h>
-#include <sabre/fv1d.h>
 
 int main(void) {
   gsl_set_error_handler_off();

@@ -27,7 +27,10 @@ double fv1d_signal_eval(const struct fv1d_signal *sig, double t) {
       size_t lo = 0, hi = n - 1; /* bisection: tt[lo] ≤ t < tt[hi] */
       while (hi - lo > 1) {
         size_t mid = (lo + hi) / 2;
-        if (tt[mid] <= t) lo = mid; else hi = mid;
+        if (tt[mid] <= t)
+          lo = mid;
+        else
+          hi = mid;
       }
       double w = (t - tt[lo]) / (tt[hi] - tt[lo]);
       return v[lo] + w * (v[hi] - v[lo]);

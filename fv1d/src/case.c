@@ -178,7 +178,8 @@ static int read_initial(struct cmn_case *c, const char *base_dir, struct fv1d_pa
   const struct rmn_eos *eos = &p->eos;
   if (cmn_case_has(c, "initial") && cmn_case_is_map(c, "initial") < 0) return -1;
   int has_rho = cmn_case_has(c, "initial.rho"), has_p = cmn_case_has(c, "initial.p");
-  if (has_rho && has_p) return cmn_case_fail(c, "initial.p", "give initial.rho or initial.p, not both");
+  if (has_rho && has_p)
+    return cmn_case_fail(c, "initial.p", "give initial.rho or initial.p, not both");
   ini->rho = eos->rho0;
   if (has_rho) {
     TRY(read_number_or_expr(c, "initial.rho", &ini->rho, &ini->rho_expr));
@@ -202,8 +203,9 @@ static int read_initial(struct cmn_case *c, const char *base_dir, struct fv1d_pa
   }
   if (cmn_case_has(c, "initial.table")) {
     if (has_rho || has_p || cmn_case_has(c, "initial.u"))
-      return cmn_case_fail(c, "initial.table", "a table replaces initial.rho, initial.p and "
-                                                "initial.u: give one or the other");
+      return cmn_case_fail(c, "initial.table",
+                           "a table replaces initial.rho, initial.p and "
+                           "initial.u: give one or the other");
     const char *file;
     TRY(cmn_case_get_string(c, "initial.table", &file));
     char path[1024], err[1536];
@@ -251,11 +253,13 @@ static int read_initial(struct cmn_case *c, const char *base_dir, struct fv1d_pa
     double x = p->x_min + ((double)i + 0.5) * dx / 3.0, rho, u;
     fv1d_initial_point(p, x, &rho, &u);
     if (!(rho > 0.0) || !isfinite(rho) || !isfinite(u)) {
-      const char *key = ini->ntable ? "initial.table"
+      const char *key = ini->ntable   ? "initial.table"
                         : ini->p_expr ? "initial.p"
-                        : (!isfinite(u) ? "initial.u" : "initial.rho");
-      return cmn_case_fail(c, key, "non-physical initial state at x = %g m: rho = %g kg/m^3, "
-                                   "u = %g m/s", x, rho, u);
+                                      : (!isfinite(u) ? "initial.u" : "initial.rho");
+      return cmn_case_fail(c, key,
+                           "non-physical initial state at x = %g m: rho = %g kg/m^3, "
+                           "u = %g m/s",
+                           x, rho, u);
     }
   }
   return 0;
@@ -320,14 +324,17 @@ static int read_signal(struct cmn_case *c, const char *base_dir, const char *sid
   }
   if (bc->imposed == RMN_IMPOSE_PRESSURE && !(lo > rmn_eos_min_pressure(eos))) {
     snprintf(key, sizeof key, "boundaries.%s", side);
-    return cmn_case_fail(c, key, "imposed pressure reaches %g Pa, at or below the vacuum "
-                                 "pressure p(0) = %g Pa", lo, rmn_eos_min_pressure(eos));
+    return cmn_case_fail(c, key,
+                         "imposed pressure reaches %g Pa, at or below the vacuum "
+                         "pressure p(0) = %g Pa",
+                         lo, rmn_eos_min_pressure(eos));
   }
   if (bc->imposed == RMN_IMPOSE_VELOCITY && !(fmax(fabs(lo), fabs(hi)) < eos->c0)) {
     snprintf(key, sizeof key, "boundaries.%s", side);
-    return cmn_case_fail(c, key, "imposed velocity reaches %g m/s: the boundary problem needs "
-                                 "subsonic flow (|u| < c0 = %g m/s)", fmax(fabs(lo), fabs(hi)),
-                         eos->c0);
+    return cmn_case_fail(c, key,
+                         "imposed velocity reaches %g m/s: the boundary problem needs "
+                         "subsonic flow (|u| < c0 = %g m/s)",
+                         fmax(fabs(lo), fabs(hi)), eos->c0);
   }
   return 0;
 }
@@ -349,9 +356,9 @@ static int read_boundaries(struct cmn_case *c, const char *base_dir, struct fv1d
     }
   }
   if ((p->bc[0].type == FV1D_BC_PERIODIC) != (p->bc[1].type == FV1D_BC_PERIODIC))
-    return cmn_case_fail(c, p->bc[0].type == FV1D_BC_PERIODIC ? "boundaries.right.type"
-                                                               : "boundaries.left.type",
-                         "periodic must be set on both ends");
+    return cmn_case_fail(
+        c, p->bc[0].type == FV1D_BC_PERIODIC ? "boundaries.right.type" : "boundaries.left.type",
+        "periodic must be set on both ends");
   return 0;
 }
 
@@ -376,8 +383,7 @@ static int read_time(struct cmn_case *c, struct fv1d_params *p) {
   TRY(cmn_case_opt_double(c, "time.atol", 1e-9, 1e-300, 1.0, &p->atol));
   TRY(cmn_case_opt_long(c, "time.max_steps", 100000000L, 1, 1000000000000L, &p->max_steps));
   char err[256];
-  if (strlen(method) >= sizeof p->method)
-    return cmn_case_fail(c, "time.method", "name too long");
+  if (strlen(method) >= sizeof p->method) return cmn_case_fail(c, "time.method", "name too long");
   if (fv1d_method_check(method, p->adaptive, err, sizeof err) != 0)
     return cmn_case_fail(c, "time.method", "%s", err);
   snprintf(p->method, sizeof p->method, "%s", method);

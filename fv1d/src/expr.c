@@ -17,9 +17,8 @@ typedef double (*fun1)(double);
 static const struct {
   const char *name;
   fun1 f;
-} functions[] = {{"sin", sin},   {"cos", cos},   {"tan", tan},   {"exp", exp},
-                 {"log", log},   {"sqrt", sqrt}, {"abs", fabs},  {"tanh", tanh},
-                 {"cosh", cosh}, {"sinh", sinh}};
+} functions[] = {{"sin", sin},   {"cos", cos},  {"tan", tan},   {"exp", exp},   {"log", log},
+                 {"sqrt", sqrt}, {"abs", fabs}, {"tanh", tanh}, {"cosh", cosh}, {"sinh", sinh}};
 
 struct instr {
   enum op op;
@@ -103,8 +102,9 @@ static void parse_atom(struct parser *ps) {
       }
     }
     ps->pos = p;
-    return fail(ps, "unknown name (variables: x, pi; functions: sin cos tan exp log sqrt abs "
-                    "tanh cosh sinh)");
+    return fail(ps,
+                "unknown name (variables: x, pi; functions: sin cos tan exp log sqrt abs "
+                "tanh cosh sinh)");
   }
   fail(ps, *p ? "unexpected character" : "unexpected end");
 }
@@ -167,9 +167,16 @@ struct fv1d_expr *fv1d_expr_compile(const char *text, char *err, size_t errlen) 
   int depth = 0;
   for (size_t k = 0; k < e->len && !ps.failed; ++k) {
     switch (e->code[k].op) {
-      case OP_NUM: case OP_X: ++depth; break;
-      case OP_NEG: case OP_FUN: break;
-      default: --depth; break;
+      case OP_NUM:
+      case OP_X:
+        ++depth;
+        break;
+      case OP_NEG:
+      case OP_FUN:
+        break;
+      default:
+        --depth;
+        break;
     }
     if (depth > e->depth) e->depth = depth;
   }
@@ -187,15 +194,38 @@ double fv1d_expr_eval(const struct fv1d_expr *e, double x) {
   for (size_t k = 0; k < e->len; ++k) {
     const struct instr *in = &e->code[k];
     switch (in->op) {
-      case OP_NUM: st[top++] = in->value; break;
-      case OP_X: st[top++] = x; break;
-      case OP_NEG: st[top - 1] = -st[top - 1]; break;
-      case OP_FUN: st[top - 1] = in->f(st[top - 1]); break;
-      case OP_ADD: --top; st[top - 1] += st[top]; break;
-      case OP_SUB: --top; st[top - 1] -= st[top]; break;
-      case OP_MUL: --top; st[top - 1] *= st[top]; break;
-      case OP_DIV: --top; st[top - 1] /= st[top]; break;
-      case OP_POW: --top; st[top - 1] = pow(st[top - 1], st[top]); break;
+      case OP_NUM:
+        st[top++] = in->value;
+        break;
+      case OP_X:
+        st[top++] = x;
+        break;
+      case OP_NEG:
+        st[top - 1] = -st[top - 1];
+        break;
+      case OP_FUN:
+        st[top - 1] = in->f(st[top - 1]);
+        break;
+      case OP_ADD:
+        --top;
+        st[top - 1] += st[top];
+        break;
+      case OP_SUB:
+        --top;
+        st[top - 1] -= st[top];
+        break;
+      case OP_MUL:
+        --top;
+        st[top - 1] *= st[top];
+        break;
+      case OP_DIV:
+        --top;
+        st[top - 1] /= st[top];
+        break;
+      case OP_POW:
+        --top;
+        st[top - 1] = pow(st[top - 1], st[top]);
+        break;
     }
   }
   double v = st[0];

@@ -1,25 +1,24 @@
 /* Method of lines with SUNDIALS ARKODE ERKStep (THEORY §2): an SSP-RK3 (Shu–Osher) Butcher table
  * through ERKStepSetTable by default, or any ARKODE ERK table by name; a fixed CFL step chosen
  * before every step, or ARKODE's error control with the CFL step as stability bound. */
+#include <arkode/arkode_erkstep.h>
 #include <math.h>
+#include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <arkode/arkode_erkstep.h>
-#include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
 #include "internal.h"
 
 /* Every SUNDIALS call goes through this check: on a negative flag record the call, the flag name
  * and the source location, then leave through `fail`. */
-#define FV1D_SUNCHECK(s, call)                                                             \
-  do {                                                                                     \
-    int flag_ = (call);                                                                    \
-    if (flag_ < 0) {                                                                       \
-      sundials_error((s), __FILE__, __func__, __LINE__, #call, flag_);                     \
-      goto fail;                                                                           \
-    }                                                                                      \
+#define FV1D_SUNCHECK(s, call)                                         \
+  do {                                                                 \
+    int flag_ = (call);                                                \
+    if (flag_ < 0) {                                                   \
+      sundials_error((s), __FILE__, __func__, __LINE__, #call, flag_); \
+      goto fail;                                                       \
+    }                                                                  \
   } while (0)
 
 static void sundials_error(struct fv1d_solver *s, const char *file, const char *func, int line,
@@ -28,11 +27,11 @@ static void sundials_error(struct fv1d_solver *s, const char *file, const char *
   char detail[sizeof s->err];
   snprintf(detail, sizeof detail, "%s", s->err);
   if (flag == ARK_RHSFUNC_FAIL || flag == ARK_REPTD_RHSFUNC_ERR || flag == ARK_UNREC_RHSFUNC_ERR) {
-    fv1d_set_error(s, "%s:%s:%d: %s returned %s: %s", file, func, line, call,
-                   name ? name : "?", detail);
+    fv1d_set_error(s, "%s:%s:%d: %s returned %s: %s", file, func, line, call, name ? name : "?",
+                   detail);
   } else {
-    fv1d_set_error(s, "%s:%s:%d: %s returned %s (%d)", file, func, line, call,
-                   name ? name : "?", flag);
+    fv1d_set_error(s, "%s:%s:%d: %s returned %s (%d)", file, func, line, call, name ? name : "?",
+                   flag);
   }
   free(name);
 }
@@ -50,20 +49,24 @@ static ARKodeButcherTable ssprk3_table(void) {
 /* The ERK tables of ARKODE 6.4 (arkode_butcher_erk.h), checked here so that a typo gets our
  * message rather than ARKODE's print on stderr. */
 static const char *const erk_names[] = {
-    "ARKODE_HEUN_EULER_2_1_2",   "ARKODE_BOGACKI_SHAMPINE_4_2_3", "ARKODE_ARK324L2SA_ERK_4_2_3",
-    "ARKODE_ZONNEVELD_5_3_4",    "ARKODE_ARK436L2SA_ERK_6_3_4",   "ARKODE_SAYFY_ABURUB_6_3_4",
-    "ARKODE_CASH_KARP_6_4_5",    "ARKODE_FEHLBERG_6_4_5",         "ARKODE_DORMAND_PRINCE_7_4_5",
-    "ARKODE_ARK548L2SA_ERK_8_4_5", "ARKODE_VERNER_8_5_6",         "ARKODE_FEHLBERG_13_7_8",
-    "ARKODE_KNOTH_WOLKE_3_3",    "ARKODE_ARK437L2SA_ERK_7_3_4",   "ARKODE_ARK548L2SAb_ERK_8_4_5",
-    NULL};
+    "ARKODE_HEUN_EULER_2_1_2",      "ARKODE_BOGACKI_SHAMPINE_4_2_3",
+    "ARKODE_ARK324L2SA_ERK_4_2_3",  "ARKODE_ZONNEVELD_5_3_4",
+    "ARKODE_ARK436L2SA_ERK_6_3_4",  "ARKODE_SAYFY_ABURUB_6_3_4",
+    "ARKODE_CASH_KARP_6_4_5",       "ARKODE_FEHLBERG_6_4_5",
+    "ARKODE_DORMAND_PRINCE_7_4_5",  "ARKODE_ARK548L2SA_ERK_8_4_5",
+    "ARKODE_VERNER_8_5_6",          "ARKODE_FEHLBERG_13_7_8",
+    "ARKODE_KNOTH_WOLKE_3_3",       "ARKODE_ARK437L2SA_ERK_7_3_4",
+    "ARKODE_ARK548L2SAb_ERK_8_4_5", NULL};
 
 int fv1d_method_check(const char *name, int adaptive, char *err, size_t errlen) {
   if (strcmp(name, "ssprk3") == 0) return 0;
   int known = 0;
   for (int k = 0; erk_names[k]; ++k) known |= strcmp(name, erk_names[k]) == 0;
   if (!known) {
-    snprintf(err, errlen, "expected 'ssprk3' or an ARKODE ERK table name (ARKODE_HEUN_EULER_2_1_2, "
-                          "ARKODE_BOGACKI_SHAMPINE_4_2_3, ..., see docs/fv1d.md), got '%s'", name);
+    snprintf(err, errlen,
+             "expected 'ssprk3' or an ARKODE ERK table name (ARKODE_HEUN_EULER_2_1_2, "
+             "ARKODE_BOGACKI_SHAMPINE_4_2_3, ..., see docs/fv1d.md), got '%s'",
+             name);
     return -1;
   }
   ARKodeButcherTable table = ARKodeButcherTable_LoadERKByName(name);
@@ -126,7 +129,7 @@ int fv1d_integrate(struct fv1d_solver *s, fv1d_observer_fn observer, void *user,
   FV1D_SUNCHECK(s, ERKStepSetUserData(mem, s));
   FV1D_SUNCHECK(s, ERKStepSetErrFile(mem, NULL)); /* failures are reported through s->err */
   table = strcmp(p->method, "ssprk3") == 0 ? ssprk3_table()
-                                            : ARKodeButcherTable_LoadERKByName(p->method);
+                                           : ARKodeButcherTable_LoadERKByName(p->method);
   if (!table) {
     fv1d_set_error(s, "unknown time-integration method '%s'", p->method);
     goto fail;
@@ -141,7 +144,8 @@ int fv1d_integrate(struct fv1d_solver *s, fv1d_observer_fn observer, void *user,
     }
     double *a = N_VGetArrayPointer(atol);
     const double rho_scale = p->eos.rho0, m_scale = p->eos.rho0 * p->eos.c0;
-    for (long i = 0; i < s->n; ++i) a[2 * i] = p->atol * rho_scale, a[2 * i + 1] = p->atol * m_scale;
+    for (long i = 0; i < s->n; ++i)
+      a[2 * i] = p->atol * rho_scale, a[2 * i + 1] = p->atol * m_scale;
     for (int k = 0; k < FV1D_NFLUXINT; ++k) a[2 * s->n + k] = 1e300; /* bookkeeping only */
     FV1D_SUNCHECK(s, ERKStepSVtolerances(mem, p->rtol, atol));
     FV1D_SUNCHECK(s, ERKStepSetStabilityFn(mem, arkode_stability, s));

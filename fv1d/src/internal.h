@@ -15,15 +15,15 @@ struct fv1d_solver {
   struct fv1d_params par; /* shallow copy: tables stay owned by the caller */
   long n;                 /* cells */
   double dx;
-  double t;               /* current time */
-  double *y;              /* state (2n + 6), owned */
+  double t;  /* current time */
+  double *y; /* state (2n + 6), owned */
   /* RHS work arrays with FV1D_GHOST ghosts on each side: primitives and slopes. */
   double *rho, *u, *srho, *su;
   double *face; /* 2 (n + 1) face fluxes */
   struct rmn_workspace *ws;
   struct fv1d_boundary_state bnd[2];
   char err[512];
-  void *integrator; /* ARKODE memory while integrating */
+  void *integrator;      /* ARKODE memory while integrating */
   long arkode_rhs_calls; /* right-hand sides evaluated for ARKODE (stages) */
 };
 

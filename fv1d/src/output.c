@@ -21,12 +21,25 @@ int fv1d_output_profile(const struct fv1d_solver *s, const char *path) {
 }
 
 enum { NSERIES = 19 };
-static const char *const series_names[NSERIES] = {
-    "t",                  "mass",               "momentum",           "energy",
-    "flux_mass_left",     "flux_momentum_left", "flux_energy_left",   "flux_mass_right",
-    "flux_momentum_right", "flux_energy_right", "int_mass_left",      "int_momentum_left",
-    "int_energy_left",    "int_mass_right",     "int_momentum_right", "int_energy_right",
-    "mass_balance",       "momentum_balance",   "energy_dissipated"};
+static const char *const series_names[NSERIES] = {"t",
+                                                  "mass",
+                                                  "momentum",
+                                                  "energy",
+                                                  "flux_mass_left",
+                                                  "flux_momentum_left",
+                                                  "flux_energy_left",
+                                                  "flux_mass_right",
+                                                  "flux_momentum_right",
+                                                  "flux_energy_right",
+                                                  "int_mass_left",
+                                                  "int_momentum_left",
+                                                  "int_energy_left",
+                                                  "int_mass_right",
+                                                  "int_momentum_right",
+                                                  "int_energy_right",
+                                                  "mass_balance",
+                                                  "momentum_balance",
+                                                  "energy_dissipated"};
 
 struct fv1d_output {
   char dir[4096];
@@ -139,8 +152,9 @@ int fv1d_output_close(struct fv1d_output *out, const struct fv1d_stats *stats, i
     fprintf(f, "cells: %ld\n", out->cells);
     fprintf(f, "wall_time: %.6g  # s\n", stats->wall_time);
     fprintf(f, "cell_updates_per_second_per_stage: %.6g\n",
-            stats->wall_time > 0.0 ? (double)out->cells * (double)stats->rhs_evals / stats->wall_time
-                                   : 0.0);
+            stats->wall_time > 0.0
+                ? (double)out->cells * (double)stats->rhs_evals / stats->wall_time
+                : 0.0);
     fprintf(f, "profiles: %ld\n", out->nprofile);
     fprintf(f, "mass_initial: %.17g  # kg/m^2\n", out->totals0[0]);
     fprintf(f, "mass_final: %.17g  # kg/m^2\n", r[1]);

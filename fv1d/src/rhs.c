@@ -77,8 +77,8 @@ int fv1d_rhs_eval(struct fv1d_solver *s, double t, const double *y, double *ydot
   for (long i = 0; i < n; ++i) {
     double rho = y[2 * i], m = y[2 * i + 1];
     if (!(rho > 0.0) || !isfinite(rho) || !isfinite(m)) {
-      fv1d_set_error(s, "t = %.9g s: cell %ld (x = %.9g m) has density %g and momentum %g",
-                     t, i, fv1d_solver_x(s, i), rho, m);
+      fv1d_set_error(s, "t = %.9g s: cell %ld (x = %.9g m) has density %g and momentum %g", t, i,
+                     fv1d_solver_x(s, i), rho, m);
       return 1;
     }
     s->rho[g + i] = rho;
@@ -118,7 +118,8 @@ int fv1d_rhs_eval(struct fv1d_solver *s, double t, const double *y, double *ydot
     const struct fv1d_boundary_state *b = &s->bnd[side];
     q[3 * side + 0] = b->flux[0];
     q[3 * side + 1] = b->flux[1];
-    q[3 * side + 2] = s->par.bc[side].type == FV1D_BC_WALL ? 0.0 : fv1d_energy_flux(eos, b->rho, b->u);
+    q[3 * side + 2] =
+        s->par.bc[side].type == FV1D_BC_WALL ? 0.0 : fv1d_energy_flux(eos, b->rho, b->u);
   }
   if (s->par.bc[0].type == FV1D_BC_PERIODIC) q[2] = q[5];
   return 0;

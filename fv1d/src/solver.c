@@ -55,7 +55,10 @@ static double table_interp(size_t n, const double *xs, const double *vs, double 
   size_t lo = 0, hi = n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (xs[mid] <= x) lo = mid; else hi = mid;
+    if (xs[mid] <= x)
+      lo = mid;
+    else
+      hi = mid;
   }
   return vs[lo] + (x - xs[lo]) / (xs[hi] - xs[lo]) * (vs[hi] - vs[lo]);
 }

@@ -61,9 +61,9 @@ static void check_open(enum rmn_imposed imposed_l, double value_l, enum rmn_impo
     double value = side == 0 ? value_l : value_r;
     if (imposed == RMN_IMPOSE_VELOCITY) value *= normal;
     struct rmn_normal_state ref;
-    assert_int_equal(rmn_boundary_solve_normal(eos, &p.rmn, ws, rho_int, normal * u_int, imposed,
-                                               value, &ref),
-                     RMN_SUCCESS);
+    assert_int_equal(
+        rmn_boundary_solve_normal(eos, &p.rmn, ws, rho_int, normal * u_int, imposed, value, &ref),
+        RMN_SUCCESS);
     assert_int_equal(ref.wave, side == 0 ? expect_wave_l : expect_wave_r);
     const struct fv1d_boundary_state *b = fv1d_solver_boundary(s, side);
     assert_rel(b->segment.rho, ref.rho, 1e-15);
@@ -71,8 +71,10 @@ static void check_open(enum rmn_imposed imposed_l, double value_l, enum rmn_impo
     assert_rel(b->rho, ref.rho, 1e-15);
     assert_abs(b->u, normal * ref.un, 1e-15 * 20.0);
     assert_abs(b->p, ref.p, 1e-15 * fabs(rmn_eos_min_pressure(eos)));
-    if (imposed == RMN_IMPOSE_PRESSURE) assert_abs(ref.p, value, 1e-9 * fabs(value) + 1e-9);
-    else assert_abs(normal * ref.un, normal * value, 1e-14);
+    if (imposed == RMN_IMPOSE_PRESSURE)
+      assert_abs(ref.p, value, 1e-9 * fabs(value) + 1e-9);
+    else
+      assert_abs(normal * ref.un, normal * value, 1e-14);
     /* face flux F(U_s) and the cell update it feeds */
     double fs[2] = {ref.rho * normal * ref.un, ref.rho * ref.un * ref.un + ref.p};
     assert_abs(b->flux[0], fs[0], 1e-14 * 1000.0 * 20.0);
@@ -80,9 +82,9 @@ static void check_open(enum rmn_imposed imposed_l, double value_l, enum rmn_impo
     double fi[2];
     long other = side == 0 ? 1 : N - 2;
     const double *a = side == 0 ? y : y + 2 * other, *c = side == 0 ? y + 2 * other : y + 2 * cell;
-    assert_int_equal(fv1d_flux_numerical(p.flux, eos, &p.rmn, ws, a[0], a[1] / a[0], c[0],
-                                         c[1] / c[0], fi),
-                     RMN_SUCCESS);
+    assert_int_equal(
+        fv1d_flux_numerical(p.flux, eos, &p.rmn, ws, a[0], a[1] / a[0], c[0], c[1] / c[0], fi),
+        RMN_SUCCESS);
     for (int k = 0; k < 2; ++k) {
       double expected = side == 0 ? (fs[k] - fi[k]) / dx : (fi[k] - fs[k]) / dx;
       assert_abs(ydot[2 * cell + k], expected, 1e-12 * (k == 0 ? 1000.0 * 20.0 : 4e5) / dx);
@@ -95,8 +97,8 @@ static void check_open(enum rmn_imposed imposed_l, double value_l, enum rmn_impo
 static void test_open_pressure(void **state) {
   (void)state;
   /* p above the interior pressure at the left (shock), below at the right (expansion) */
-  check_open(RMN_IMPOSE_PRESSURE, 2345.6, RMN_IMPOSE_PRESSURE, -1234.5, 1000.0, 0.31, 1000.0,
-             0.27, RMN_WAVE_SHOCK, RMN_WAVE_EXPANSION);
+  check_open(RMN_IMPOSE_PRESSURE, 2345.6, RMN_IMPOSE_PRESSURE, -1234.5, 1000.0, 0.31, 1000.0, 0.27,
+             RMN_WAVE_SHOCK, RMN_WAVE_EXPANSION);
 }
 
 static void test_open_velocity(void **state) {

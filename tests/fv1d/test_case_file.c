@@ -157,9 +157,10 @@ static void test_tables(void **state) {
   assert_non_null(f);
   fputs("t,value\n0,0\n0.5,100\n1.0,50\n", f);
   fclose(f);
-  const char *sets[] = {"boundaries.right={type: open, impose: pressure, signal: table, "
-                        "table: fv1d_test_table.csv}",
-                        NULL};
+  const char *sets[] = {
+      "boundaries.right={type: open, impose: pressure, signal: table, "
+      "table: fv1d_test_table.csv}",
+      NULL};
   struct fv1d_params p;
   char msg[512];
   int status = read_case(sets, msg, sizeof msg, &p);

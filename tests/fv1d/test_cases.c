@@ -37,9 +37,9 @@ static void test_water_hammer(void **state) {
   /* the exact shock: interior (ρ0, u_n = −u0) brought to rest (imposed u_n = 0) */
   struct rmn_workspace *ws = rmn_workspace_alloc();
   struct rmn_normal_state ex;
-  assert_int_equal(rmn_boundary_solve_normal(&p.eos, &p.rmn, ws, rho0, -u0, RMN_IMPOSE_VELOCITY,
-                                             0.0, &ex),
-                   RMN_SUCCESS);
+  assert_int_equal(
+      rmn_boundary_solve_normal(&p.eos, &p.rmn, ws, rho0, -u0, RMN_IMPOSE_VELOCITY, 0.0, &ex),
+      RMN_SUCCESS);
   rmn_workspace_free(ws);
   printf("water hammer: dp = %.6g Pa, Joukowsky %.6g Pa (%.3f%%), exact shock %.6g Pa (%.4f%%)\n",
          dp, joukowsky, 100.0 * (dp / joukowsky - 1.0), ex.p, 100.0 * (dp / ex.p - 1.0));
@@ -53,7 +53,8 @@ static void test_water_hammer(void **state) {
 }
 
 /* Stoker: h_m solves 2 (c_L − c_m) = (h_m − h_R) sqrt(g/2 (h_m + h_R)/(h_m h_R)) (rarefaction on
- * the left, hydraulic jump on the right); u_m = 2 (c_L − c_m); jump speed S = h_m u_m/(h_m − h_R). */
+ * the left, hydraulic jump on the right); u_m = 2 (c_L − c_m); jump speed S = h_m u_m/(h_m − h_R).
+ */
 struct stoker {
   double g, h_l, h_r, h_m, u_m, c_l, c_m, s;
 };
@@ -68,7 +69,10 @@ static void stoker_solve(struct stoker *st) {
   double lo = st->h_r, hi = st->h_l; /* residual > 0 at h_R, < 0 at h_L */
   for (int it = 0; it < 200; ++it) {
     double mid = 0.5 * (lo + hi);
-    if (stoker_residual(st, mid) > 0.0) lo = mid; else hi = mid;
+    if (stoker_residual(st, mid) > 0.0)
+      lo = mid;
+    else
+      hi = mid;
   }
   st->h_m = 0.5 * (lo + hi);
   st->c_m = sqrt(st->g * st->h_m);

@@ -15,7 +15,8 @@ static void random_state(struct fv1d_solver *s, uint64_t seed, double rho0, doub
   double *y = fv1d_solver_state(s);
   for (long i = 0; i < fv1d_solver_cells(s); ++i) {
     double x = fv1d_solver_x(s, i);
-    double rho = rho0 * (1.0 + 0.02 * sin(6.283185307179586 * x) + sabre_rng_uniform(&rng, -0.01, 0.01));
+    double rho =
+        rho0 * (1.0 + 0.02 * sin(6.283185307179586 * x) + sabre_rng_uniform(&rng, -0.01, 0.01));
     double u = c0 * (0.03 * cos(6.283185307179586 * x) + sabre_rng_uniform(&rng, -0.02, 0.02));
     y[2 * i] = rho, y[2 * i + 1] = rho * u;
   }

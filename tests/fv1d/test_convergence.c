@@ -29,7 +29,8 @@ static double riemann_l1(enum fv1d_flux flux, enum fv1d_recon recon, long n, con
   struct fv1d_params p;
   th_params(&p, -0.5, 0.5, n, 1000.0, 20.0, 7.0);
   p.flux = flux, p.recon = recon;
-  struct fv1d_region reg[2] = {{-INFINITY, 0.0, state[0], state[1]}, {0.0, INFINITY, state[2], state[3]}};
+  struct fv1d_region reg[2] = {{-INFINITY, 0.0, state[0], state[1]},
+                               {0.0, INFINITY, state[2], state[3]}};
   p.initial.regions = reg, p.initial.nregions = 2;
   p.t_end = t_end, p.output_times = &t_end, p.noutput = 1;
   struct fv1d_solver *s = fv1d_solver_create(&p);
@@ -95,7 +96,8 @@ static double wave_exact(const struct rmn_eos *eos, double eps, double x, double
     double h = 1e-7;
     double g = x0 + wave_speed(eos, wave_rho0(eos, eps, x0)) * t - x;
     double gp = 1.0 + (wave_speed(eos, wave_rho0(eos, eps, x0 + h)) -
-                       wave_speed(eos, wave_rho0(eos, eps, x0 - h))) * t / (2.0 * h);
+                       wave_speed(eos, wave_rho0(eos, eps, x0 - h))) *
+                          t / (2.0 * h);
     double dx0 = g / gp;
     x0 -= dx0;
     if (fabs(dx0) < 1e-15) break;

@@ -70,7 +70,8 @@ static void test_adaptive_and_tables(void **state) {
   long steps, steps_fixed;
   double d_fixed = run_and_diff("ssprk3", 0, ref, &mass_err, &steps_fixed);
   assert_true(mass_err < 1e-14);
-  const char *methods[] = {"ssprk3", "ARKODE_BOGACKI_SHAMPINE_4_2_3", "ARKODE_DORMAND_PRINCE_7_4_5"};
+  const char *methods[] = {"ssprk3", "ARKODE_BOGACKI_SHAMPINE_4_2_3",
+                           "ARKODE_DORMAND_PRINCE_7_4_5"};
   for (int k = 0; k < 3; ++k) {
     d = run_and_diff(methods[k], 1, ref, &mass_err, &steps);
     printf("adaptive %-30s steps %4ld  L1 difference %.3e (fixed ssprk3: %ld steps, %.3e)\n",

@@ -1,5 +1,6 @@
 /*
- * SABRE fv1d/ — the one-dimensional finite-volume reference solver of the barotropic Euler equations
+ * SABRE fv1d/ — the one-dimensional finite-volume reference solver of the barotropic Euler
+ * equations
  *
  *     ∂U/∂t + ∂F(U)/∂x = 0,   U = (ρ, ρu),   F(U) = (ρu, ρu² + p(ρ)),          THEORY §2
  *
@@ -21,11 +22,10 @@
 #ifndef SABRE_FV1D_H
 #define SABRE_FV1D_H
 
-#include <stddef.h>
-#include <stdio.h>
-
 #include <sabre/common.h>
 #include <sabre/riemann.h>
+#include <stddef.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -86,35 +86,35 @@ struct fv1d_region {
 };
 struct fv1d_expr; /* compiled expression in x (see fv1d_expr_compile) */
 struct fv1d_initial {
-  double rho, u;                   /**< uniform background (used when no expression) */
-  struct fv1d_expr *rho_expr;      /**< ρ(x) [kg/m³] or NULL */
-  struct fv1d_expr *p_expr;        /**< p(x) [Pa] or NULL (ρ from the EOS) */
-  struct fv1d_expr *u_expr;        /**< u(x) [m/s] or NULL */
-  size_t ntable;                   /**< profile table (x, rho, u) length, 0 if none */
+  double rho, u;              /**< uniform background (used when no expression) */
+  struct fv1d_expr *rho_expr; /**< ρ(x) [kg/m³] or NULL */
+  struct fv1d_expr *p_expr;   /**< p(x) [Pa] or NULL (ρ from the EOS) */
+  struct fv1d_expr *u_expr;   /**< u(x) [m/s] or NULL */
+  size_t ntable;              /**< profile table (x, rho, u) length, 0 if none */
   double *table_x, *table_rho, *table_u;
   size_t nregions;
   struct fv1d_region *regions;
 };
 
 struct fv1d_params {
-  double x_min, x_max;     /**< domain [m] */
-  long cells;              /**< number of cells */
-  struct rmn_eos eos;      /**< fluid */
-  struct rmn_params rmn;   /**< riemann/ tolerances */
+  double x_min, x_max;   /**< domain [m] */
+  long cells;            /**< number of cells */
+  struct rmn_eos eos;    /**< fluid */
+  struct rmn_params rmn; /**< riemann/ tolerances */
   enum fv1d_flux flux;
   enum fv1d_recon recon;
-  struct fv1d_bc bc[2];    /**< [0] left (x_min), [1] right (x_max) */
+  struct fv1d_bc bc[2]; /**< [0] left (x_min), [1] right (x_max) */
   struct fv1d_initial initial;
-  double t_end;            /**< end time [s] */
-  char method[64];         /**< "ssprk3" or an ARKODE ERK table name */
-  double cfl;              /**< Courant number: dt = cfl dx / max(|u| + c) */
-  int adaptive;            /**< ARKODE error control (the CFL step becomes a stability bound) */
-  double rtol, atol;       /**< adaptive tolerances (atol relative to ρ0 and ρ0 c0) */
+  double t_end;      /**< end time [s] */
+  char method[64];   /**< "ssprk3" or an ARKODE ERK table name */
+  double cfl;        /**< Courant number: dt = cfl dx / max(|u| + c) */
+  int adaptive;      /**< ARKODE error control (the CFL step becomes a stability bound) */
+  double rtol, atol; /**< adaptive tolerances (atol relative to ρ0 and ρ0 c0) */
   long max_steps;
-  size_t noutput;          /**< output times (profiles) */
-  double *output_times;    /**< strictly increasing, in (0, t_end] */
-  long series_every;       /**< time-series row every this many steps */
-  int progress;            /**< progress lines on stderr */
+  size_t noutput;       /**< output times (profiles) */
+  double *output_times; /**< strictly increasing, in (0, t_end] */
+  long series_every;    /**< time-series row every this many steps */
+  int progress;         /**< progress lines on stderr */
 };
 
 /** Defaults (documented in docs/fv1d.md); cells, t_end and the EOS must still be set. */
@@ -144,7 +144,8 @@ void fv1d_expr_free(struct fv1d_expr *e);
  * Pointwise physics
  * ------------------------------------------------------------------------------------------- */
 /** Physical flux F(U) = (ρu, ρu² + p(ρ)) of a primitive state. */
-static inline void fv1d_flux_physical(const struct rmn_eos *eos, double rho, double u, double f[2]) {
+static inline void fv1d_flux_physical(const struct rmn_eos *eos, double rho, double u,
+                                      double f[2]) {
   f[0] = rho * u;
   f[1] = rho * u * u + rmn_eos_pressure(eos, rho);
 }
@@ -218,8 +219,8 @@ void fv1d_totals(const struct fv1d_solver *s, const double *y, double totals[3])
 
 /** Called at t = 0, after every step and at every output time. */
 enum fv1d_event { FV1D_EVENT_START = 0, FV1D_EVENT_STEP = 1, FV1D_EVENT_OUTPUT = 2 };
-typedef int (*fv1d_observer_fn)(struct fv1d_solver *s, enum fv1d_event event, long step,
-                                double t, double dt, void *user);
+typedef int (*fv1d_observer_fn)(struct fv1d_solver *s, enum fv1d_event event, long step, double t,
+                                double dt, void *user);
 
 /** Statistics of a run. */
 struct fv1d_stats {
@@ -227,7 +228,7 @@ struct fv1d_stats {
   long rhs_evals;        /**< right-hand sides evaluated by the integrator (RK stages) */
   long arkode_rhs_evals; /**< ARKODE's own count (ERKStepGetNumRhsEvals) */
   long failed_steps;     /**< error-test failures (adaptive) */
-  double wall_time; /**< [s] */
+  double wall_time;      /**< [s] */
 };
 
 /**

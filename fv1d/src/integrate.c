@@ -6,6 +6,7 @@
 #include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sundials/sundials_config.h>
 #include <sundials/sundials_context.h>
 
 #include "internal.h"
@@ -71,11 +72,32 @@ int fv1d_method_check(const char *name, int adaptive, char *err, size_t errlen) 
   }
   ARKodeButcherTable table = ARKodeButcherTable_LoadERKByName(name);
   if (!table) {
-    snprintf(err, errlen, "unknown ARKODE ERK table '%s'", name);
+    snprintf(err, errlen, "ARKODE cannot load the ERK table '%s'", name);
     return -1;
   }
+  const int s = table->stages;
   int embedded = table->d != NULL && table->p > 0;
+  /* SUNDIALS 6.4 (and, to be safe, anything before 6.7) treats every ERK table whose last node is
+   * c_s = 1 as "first same as last" and reuses its last stage as the next step's first, which is
+   * wrong unless the last row of A equals b (LLNL/sundials issue #311, fixed by PR #324):
+   * ARKODE_HEUN_EULER_2_1_2 and the ARKODE_ARK*_ERK tables then lose their order. Refuse them
+   * rather than give wrong answers. */
+  int not_fsal = 0;
+  for (int j = 0; j < s; ++j) not_fsal |= table->A[s - 1][j] != table->b[j];
+  int broken = table->c[s - 1] == 1.0 && not_fsal;
   ARKodeButcherTable_Free(table);
+#if SUNDIALS_VERSION_MAJOR < 6 || (SUNDIALS_VERSION_MAJOR == 6 && SUNDIALS_VERSION_MINOR < 7)
+  if (broken) {
+    snprintf(err, errlen,
+             "table '%s' has c_s = 1 without being first-same-as-last, which SUNDIALS %s "
+             "integrates wrongly (LLNL/sundials issue #311, fixed upstream by PR #324): "
+             "choose another",
+             name, SUNDIALS_VERSION);
+    return -1;
+  }
+#else
+  (void)broken;
+#endif
   if (adaptive && !embedded) {
     snprintf(err, errlen, "table '%s' has no embedding: time.adaptive needs one", name);
     return -1;

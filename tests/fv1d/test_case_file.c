@@ -121,6 +121,11 @@ static void test_bad_choice(void **state) {
   expect_error("boundaries.left.type=hole", "boundaries.left.type", "periodic");
   expect_error("time.method=ARKODE_NOT_A_TABLE", "time.method", NULL);
   expect_error("time.method=rk4", "time.method", NULL);
+  /* tables that SUNDIALS 6.4 mis-integrates (c_s = 1 without FSAL, LLNL/sundials #311) */
+  expect_error("time.method=ARKODE_HEUN_EULER_2_1_2", "time.method", "#311");
+  expect_error("time.method=ARKODE_ARK436L2SA_ERK_6_3_4", "time.method", "#311");
+  expect_error("time={end: 0.01, method: ARKODE_KNOTH_WOLKE_3_3, adaptive: true}", "time.method",
+               "embedding");
 }
 
 static void test_non_physical(void **state) {

@@ -2,14 +2,17 @@
  *
  * Cells are at least one kernel support wide; each query cell gathers from the cells within the
  * search reach (one layer for points, more only if a segment's extent requires it). Lists are
- * built in two passes (count, then fill) so each row is written by the thread that owns its query
- * particle: no atomics, and the result is independent of the thread count. */
+ * written by the thread that owns its query particle's cell: no atomics, and the result is
+ * independent of the thread count. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Cap on the number of cells relative to the particle count, for sparse sets. */
 #define CELLS_PER_PARTICLE_MAX 4
@@ -80,9 +83,12 @@ void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cel
       if (c->domain.periodic[a]) continue;
       for (size_t i = 0; i < p->n; i++) {
         double x = p->x[a][i];
-        if (!isfinite(x)) cmn_error("%s particle %zu (id %lld) has a non-finite position",
-                                    k == 0 ? "fluid" : k == 1 ? "vertex" : "segment", i,
-                                    (long long)p->id[i]);
+        if (!isfinite(x))
+          cmn_error("%s particle %zu (id %lld) has a non-finite position",
+                    k == 0   ? "fluid"
+                    : k == 1 ? "vertex"
+                             : "segment",
+                    i, (long long)p->id[i]);
         if (x < c->domain.lo[a]) c->domain.lo[a] = x;
         if (x > c->domain.hi[a]) c->domain.hi[a] = x;
       }
@@ -344,12 +350,34 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   nlist_alloc(nl, query, other, pq->n);
   const size_t *startq = c->start[query], *starto = c->start[other];
   const size_t *idxq = c->index[query], *idxo = c->index[other];
-  for (int pass = 0; pass < 2; pass++) {
+  /* One pass: each thread appends the rows of the cells it handles to its own buffer (row order
+   * fixed by the traversal, so independent of the thread count); then the rows are copied into
+   * place once the offsets are known. */
+  int nthreads = 1;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 8)
+  nthreads = omp_get_max_threads();
+#endif
+  struct row_buffer {
+    size_t *data, n, cap;
+  } *buf = cmn_calloc((size_t)nthreads, sizeof *buf);
+  int *cell_thread = cmn_malloc((c->ncells + 1) * sizeof *cell_thread);
+  size_t *cell_at = cmn_malloc((c->ncells + 1) * sizeof *cell_at);
+#ifdef _OPENMP
+#pragma omp parallel
+#endif
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    struct row_buffer *b = &buf[tid];
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 8)
 #endif
     for (size_t ci = 0; ci < c->ncells; ci++) {
       if (startq[ci] == startq[ci + 1]) continue;
+      cell_thread[ci] = tid;
+      cell_at[ci] = b->n;
       int ic[3] = {0, 0, 0}, st[3][2 * STENCIL_REACH_MAX + 1], nst[3];
       size_t rest = ci;
       for (int a = 0; a < 3; a++) {
@@ -360,29 +388,45 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
         nst[a] = axis_stencil(c, a, ic[a], sreach[a], st[a]);
       }
       for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
-        size_t i = idxq[qa];
+        size_t i = idxq[qa], first = b->n;
         double xa[3] = {c->xs[query][0][qa], c->xs[query][1][qa], c->xs[query][2][qa]};
-        size_t cnt = 0, *row = pass ? nl->index + nl->offset[i] : NULL;
         for (int s2 = 0; s2 < nst[2]; s2++)
           for (int s1 = 0; s1 < nst[1]; s1++)
             for (int s0 = 0; s0 < nst[0]; s0++) {
               size_t cj = ((size_t)st[2][s2] * (size_t)c->ncell[1] + (size_t)st[1][s1]) *
                               (size_t)c->ncell[0] +
                           (size_t)st[0][s0];
-              for (size_t ob = starto[cj]; ob < starto[cj + 1]; ob++) {
+              size_t o0 = starto[cj], o1 = starto[cj + 1];
+              if (b->n + (o1 - o0) > b->cap) {
+                b->cap = 2 * (b->n + (o1 - o0)) + 1024;
+                b->data = cmn_realloc(b->data, b->cap * sizeof *b->data);
+              }
+              for (size_t ob = o0; ob < o1; ob++) {
                 double xb[3] = {c->xs[other][0][ob], c->xs[other][1][ob], c->xs[other][2][ob]};
                 size_t j = idxo[ob];
-                if (!is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) continue;
-                if (pass) row[cnt] = j;
-                cnt++;
+                if (is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) b->data[b->n++] = j;
               }
             }
-        if (!pass) nl->offset[i + 1] = cnt;
+        nl->offset[i + 1] = b->n - first;
       }
     }
-    if (!pass) {
-      for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
-      nlist_reserve(nl);
+  }
+  for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
+  nlist_reserve(nl);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t ci = 0; ci < c->ncells; ci++) {
+    if (startq[ci] == startq[ci + 1]) continue;
+    const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
+    for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
+      size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];
+      memcpy(nl->index + nl->offset[i], from, len * sizeof *from);
+      from += len;
     }
   }
+  for (int t = 0; t < nthreads; t++) free(buf[t].data);
+  free(buf);
+  free(cell_thread);
+  free(cell_at);
 }

@@ -64,10 +64,11 @@ static void test_box_2d(void **state) {
   (void)state;
   struct sph_geometry g;
   struct sph_system s;
-  build("geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
-        "    - {type: box, lo: [0, 0], hi: [1.2, 0.7], open: [x+]}\n"
-        "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 0.5]}\n",
-        &g, &s);
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
+      "    - {type: box, lo: [0, 0], hi: [1.2, 0.7], open: [x+]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 0.5]}\n",
+      &g, &s);
   assert_int_equal(s.part[SPH_KIND_FLUID].n, 12 * 5);
   assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 2 * (12 + 7));
   assert_int_equal(s.part[SPH_KIND_VERTEX].n, 2 * (12 + 7));
@@ -103,13 +104,14 @@ static void test_fill_2d_polygons(void **state) {
   const double obst[3][2] = {{0.61, 0.3}, {1.07, 0.33}, {0.8, 0.57}};
   struct sph_geometry g;
   struct sph_system s;
-  build("geometry:\n  dimension: 2\n  dr: 0.0371\n  h_over_dr: 1.7\n"
-        "  min_wall_distance: 0.02\n  walls:\n"
-        "    - {type: polygon, points: [[0, 0], [2.1, 0], [3, 1.13], [3, 1.5], [0, 1.5]]}\n"
-        "    - type: polygon\n      points: [[0.61, 0.3], [1.07, 0.33], [0.8, 0.57]]\n"
-        "      fluid: outside\n"
-        "  fluid:\n    - {type: box, lo: [-0.2, -0.1], hi: [3.3, 0.8]}\n",
-        &g, &s);
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.0371\n  h_over_dr: 1.7\n"
+      "  min_wall_distance: 0.02\n  walls:\n"
+      "    - {type: polygon, points: [[0, 0], [2.1, 0], [3, 1.13], [3, 1.5], [0, 1.5]]}\n"
+      "    - type: polygon\n      points: [[0.61, 0.3], [1.07, 0.33], [0.8, 0.57]]\n"
+      "      fluid: outside\n"
+      "  fluid:\n    - {type: box, lo: [-0.2, -0.1], hi: [3.3, 0.8]}\n",
+      &g, &s);
   const struct sph_parts *pf = &s.part[SPH_KIND_FLUID];
   /* Brute force on the same lattice. */
   double dr = 0.0371;
@@ -137,10 +139,11 @@ static void test_channel_periodic(void **state) {
   (void)state;
   struct sph_geometry g;
   struct sph_system s;
-  build("geometry:\n  dimension: 2\n  dr: 0.1\n  periodic: [x]\n  walls:\n"
-        "    - {type: channel, lo: [0, 0], hi: [1, 0.4]}\n"
-        "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.4]}\n",
-        &g, &s);
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  periodic: [x]\n  walls:\n"
+      "    - {type: channel, lo: [0, 0], hi: [1, 0.4]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.4]}\n",
+      &g, &s);
   assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 20);
   assert_int_equal(s.part[SPH_KIND_VERTEX].n, 20);
   assert_int_equal(s.part[SPH_KIND_FLUID].n, 40);
@@ -156,10 +159,11 @@ static void test_interval_1d(void **state) {
   (void)state;
   struct sph_geometry g;
   struct sph_system s;
-  build("geometry:\n  dimension: 1\n  dr: 0.05\n  walls:\n"
-        "    - {type: interval, lo: [0.25], hi: [1.25], open: [x+]}\n"
-        "  fluid:\n    - {type: box, lo: [0.25], hi: [1.0]}\n",
-        &g, &s);
+  build(
+      "geometry:\n  dimension: 1\n  dr: 0.05\n  walls:\n"
+      "    - {type: interval, lo: [0.25], hi: [1.25], open: [x+]}\n"
+      "  fluid:\n    - {type: box, lo: [0.25], hi: [1.0]}\n",
+      &g, &s);
   assert_int_equal(s.part[SPH_KIND_FLUID].n, 15);
   assert_int_equal(s.part[SPH_KIND_SEGMENT].n, 2);
   assert_rel(s.part[SPH_KIND_SEGMENT].normal[0][1], -1, 0);
@@ -181,11 +185,12 @@ static void test_fill_3d_stl(void **state) {
   sph_mesh_free(&cube);
   struct sph_geometry g;
   struct sph_system s;
-  build("geometry:\n  dimension: 3\n  dr: 0.05\n  h_over_dr: 1.3\n  walls:\n"
-        "    - {type: box, lo: [0, 0, 0], hi: [1, 1, 1]}\n"
-        "    - {type: stl, file: cube.stl, fluid: outside, scale: 1.0}\n"
-        "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [1, 1, 0.5]}\n",
-        &g, &s);
+  build(
+      "geometry:\n  dimension: 3\n  dr: 0.05\n  h_over_dr: 1.3\n  walls:\n"
+      "    - {type: box, lo: [0, 0, 0], hi: [1, 1, 1]}\n"
+      "    - {type: stl, file: cube.stl, fluid: outside, scale: 1.0}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [1, 1, 0.5]}\n",
+      &g, &s);
   size_t expected = 0;
   for (int k = 0; k < 10; k++)
     for (int j = 0; j < 20; j++)

@@ -86,9 +86,8 @@ static void test_case_errors(void **state) {
   (void)state;
   char msg[4096];
   /* The valid case used as a base below runs cleanly. */
-  assert_int_equal(run_case(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1]}\n", msg,
-                            sizeof msg),
-                   0);
+  assert_int_equal(
+      run_case(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1]}\n", msg, sizeof msg), 0);
   expect(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hii: [1, 1]}\n",
          "geometry.walls[0].hi: required key missing");
   expect(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1], hight: 2}\n",
@@ -97,19 +96,22 @@ static void test_case_errors(void **state) {
          "hi must exceed lo in every direction (y: -1 <= 0)");
   expect(HEAD2 "  walls:\n    - {type: cube, lo: [0, 0], hi: [1, 1]}\n",
          "case.yaml:5:14: geometry.walls[0].type: expected one of: interval, box");
-  expect(HEAD2 "  walls:\n    - {type: stl, file: a.stl}\n", "wall type 'stl' does not exist in 2D");
+  expect(HEAD2 "  walls:\n    - {type: stl, file: a.stl}\n",
+         "wall type 'stl' does not exist in 2D");
   expect(HEAD2 "  walls:\n    - {type: channel, lo: [0, 0], hi: [1, 1]}\n",
          "add x to geometry.periodic");
   expect(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1], open: [z+]}\n",
          "geometry.walls[0].open[0]: no such face");
   expect(HEAD2 "  walls:\n    - {type: polygon, closed: false, points: [[0, 0], [1, 0], [1, 1]]}\n",
          "geometry.walls: geometry.walls[0] (polygon): segment 1: the wall is open at (0, 0)");
-  expect(HEAD2 "  walls:\n    - {type: polygon, closed: false, fluid: inside, points: [[0, 0], "
-               "[1, 0]]}\n",
+  expect(HEAD2
+         "  walls:\n    - {type: polygon, closed: false, fluid: inside, points: [[0, 0], "
+         "[1, 0]]}\n",
          "an open polyline has the fluid on its left or right");
   expect(HEAD2 "  periodic: [z]\n", "geometry.periodic[0]: no direction z in 2D");
-  expect(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1]}\n"
-               "    - {type: polygon, fluid: left, closed: false, points: [[1, 1], [0, 1]]}\n",
+  expect(HEAD2
+         "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1]}\n"
+         "    - {type: polygon, fluid: left, closed: false, points: [[1, 1], [0, 1]]}\n",
          "inconsistent orientation");
   /* Files. */
   write_file("bad.poly", "polygon\n0 0\n1 0\n1 1 closed\n");
@@ -131,9 +133,8 @@ static void test_case_errors(void **state) {
              "endloop\nendfacet\n"
              "facet normal 0 0 0\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\n"
              "endloop\nendfacet\nendsolid t\n");
-  assert_int_equal(run_case(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl}\n", msg,
-                            sizeof msg),
-                   0);
+  assert_int_equal(
+      run_case(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl}\n", msg, sizeof msg), 0);
   /* The same solid with its facets reversed (clockwise from outside): inside out. */
   write_file("inverted.stl",
              "solid t\n"

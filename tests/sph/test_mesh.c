@@ -101,8 +101,7 @@ static void roundtrip(int binary) {
   assert_int_equal(r.nvert, m.nvert);
   for (size_t e = 0; e < m.nelem; e++)
     for (int k = 0; k < 3; k++) {
-      for (int a = 0; a < 3; a++)
-        assert_true(r.vert[r.elem[e][k]][a] == m.vert[m.elem[e][k]][a]);
+      for (int a = 0; a < 3; a++) assert_true(r.vert[r.elem[e][k]][a] == m.vert[m.elem[e][k]][a]);
       assert_abs(r.normal[e][k], m.normal[e][k], 1e-15);
     }
   assert_int_equal(sph_mesh_check(&r, NULL, msg, sizeof msg), 0);
@@ -181,16 +180,18 @@ static void test_stl_errors(void **state) {
            tetra_facets);
   expect_stl_error(write_text("normal.stl", text), ":23: triangle 4: its facet normal");
   /* Syntax errors name the line. */
-  expect_stl_error(write_text("syntax.stl", "solid x\nfacet normal 0 0 1\nouter loop\n"
-                                            "vertex 0 0\nendloop\n"),
+  expect_stl_error(write_text("syntax.stl",
+                              "solid x\nfacet normal 0 0 1\nouter loop\n"
+                              "vertex 0 0\nendloop\n"),
                    "syntax.stl:5: expected three numbers after 'vertex', got 'endloop'");
   expect_stl_error(write_text("trunc.stl", "solid x\nfacet normal 0 0 1\n"),
                    "trunc.stl:3: expected 'outer', got 'end of file'");
   expect_stl_error(write_text("junk.stl", "hello"), "not an STL file");
   /* Degenerate triangle. */
-  expect_stl_error(write_text("degen.stl", "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\n"
-                                           "vertex 1 1 1\nvertex 2 2 2\nendloop\nendfacet\n"
-                                           "endsolid d\n"),
+  expect_stl_error(write_text("degen.stl",
+                              "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\n"
+                              "vertex 1 1 1\nvertex 2 2 2\nendloop\nendfacet\n"
+                              "endsolid d\n"),
                    "degen.stl: triangle 1: degenerate");
   /* Binary: truncated file is not taken for binary. */
   struct sph_mesh c;
@@ -309,9 +310,8 @@ static void test_polyline_file(void **state) {
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
     sph_mesh_init(&m, 2);
-    assert_int_equal(sph_mesh_read_polyline(&m, write_text("bad.poly", bad[i].text), 1, msg,
-                                            sizeof msg),
-                     -1);
+    assert_int_equal(
+        sph_mesh_read_polyline(&m, write_text("bad.poly", bad[i].text), 1, msg, sizeof msg), -1);
     if (!strstr(msg, bad[i].want)) print_error("message: '%s'\n", msg);
     assert_non_null(strstr(msg, bad[i].want));
     sph_mesh_free(&m);
@@ -320,10 +320,12 @@ static void test_polyline_file(void **state) {
 
 int main(void) {
   sabre_fp_traps_on();
-  const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_box_closed),         cmocka_unit_test(test_stl_roundtrip_ascii),
-      cmocka_unit_test(test_stl_roundtrip_binary), cmocka_unit_test(test_stl_errors),
-      cmocka_unit_test(test_refine_3d),          cmocka_unit_test(test_polygon_2d),
-      cmocka_unit_test(test_polyline_file)};
+  const struct CMUnitTest tests[] = {cmocka_unit_test(test_box_closed),
+                                     cmocka_unit_test(test_stl_roundtrip_ascii),
+                                     cmocka_unit_test(test_stl_roundtrip_binary),
+                                     cmocka_unit_test(test_stl_errors),
+                                     cmocka_unit_test(test_refine_3d),
+                                     cmocka_unit_test(test_polygon_2d),
+                                     cmocka_unit_test(test_polyline_file)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -32,7 +32,8 @@ static void random_system(struct sph_system *s, int dim, unsigned periodic, uint
   }
   size_t f0 = sph_system_append(s, SPH_KIND_FLUID, nf);
   for (size_t i = f0; i < f0 + nf; i++)
-    for (int a = 0; a < dim; a++) s->part[SPH_KIND_FLUID].x[a][i] = sabre_rng_uniform(&rng, lo[a], hi[a]);
+    for (int a = 0; a < dim; a++)
+      s->part[SPH_KIND_FLUID].x[a][i] = sabre_rng_uniform(&rng, lo[a], hi[a]);
   /* A few extra vertices not attached to any segment, then dim vertices per segment. */
   size_t nv_free = nseg / 2;
   size_t v0 = sph_system_append(s, SPH_KIND_VERTEX, nv_free + nseg * (size_t)dim);
@@ -103,8 +104,7 @@ static void check_dim(int dim, size_t nf, double radius) {
                                            {SPH_KIND_SEGMENT, SPH_KIND_FLUID}};
   for (unsigned periodic = 0; periodic < (1u << dim); periodic++) {
     struct sph_system s;
-    random_system(&s, dim, periodic, 1234 + periodic * 7 + (uint64_t)dim, nf, nf / 4,
-                  0.4 * radius);
+    random_system(&s, dim, periodic, 1234 + periodic * 7 + (uint64_t)dim, nf, nf / 4, 0.4 * radius);
     for (size_t p = 0; p < sizeof pairs / sizeof pairs[0]; p++) {
       struct sph_nlist naive = {0}, first = {0};
       sph_nlist_build_naive(&naive, &s, pairs[p][0], pairs[p][1], radius);
@@ -135,17 +135,17 @@ static void check_dim(int dim, size_t nf, double radius) {
 
 static void test_neighbours_1d(void **state) {
   (void)state;
-  check_dim(1, 400, 0.0213);
+  check_dim(1, 300, 0.0284);
 }
 
 static void test_neighbours_2d(void **state) {
   (void)state;
-  check_dim(2, 900, 0.0823);
+  check_dim(2, 500, 0.110);
 }
 
 static void test_neighbours_3d(void **state) {
   (void)state;
-  check_dim(3, 1200, 0.1573);
+  check_dim(3, 600, 0.198);
 }
 
 /* A wide radius spans several cells of a periodic direction: every pair is still found once. */

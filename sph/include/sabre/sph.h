@@ -45,13 +45,13 @@ enum sph_flag {
 
 struct sph_parts {
   enum sph_kind kind;
-  size_t n;        /**< number of particles */
-  size_t capacity; /**< allocated length of every array */
-  double *x[3];    /**< position [m]; a segment's position is its centroid */
-  double *v[3];    /**< velocity [m/s] */
-  double *mass;    /**< mass [kg] (fluid, vertex; set by the solver, 0 after meshing) */
-  double *rho;     /**< density [kg/m^3] (set by the solver, 0 after meshing) */
-  double *gamma;   /**< γ, J(2) (fluid, vertex) [-] */
+  size_t n;              /**< number of particles */
+  size_t capacity;       /**< allocated length of every array */
+  double *x[3];          /**< position [m]; a segment's position is its centroid */
+  double *v[3];          /**< velocity [m/s] */
+  double *mass;          /**< mass [kg] (fluid, vertex; set by the solver, 0 after meshing) */
+  double *rho;           /**< density [kg/m^3] (set by the solver, 0 after meshing) */
+  double *gamma;         /**< γ, J(2) (fluid, vertex) [-] */
   double *grad_gamma[3]; /**< ∇γ, J(4) (fluid, vertex) [1/m] */
   double *normal[3];     /**< unit normal into the fluid (segment; vertex: mean of its segments) */
   double *measure;       /**< segment length (2D) or area (3D) [m^(d-1)]; 1 in 1D */
@@ -114,8 +114,8 @@ static inline void sph_domain_delta(const struct sph_domain *dom, const double *
 /** All particles of a run: one store per kind, the domain and the id counter. */
 struct sph_system {
   int dim;
-  double dr;      /**< initial particle spacing Δr [m] */
-  double h;       /**< smoothing length [m] */
+  double dr; /**< initial particle spacing Δr [m] */
+  double h;  /**< smoothing length [m] */
   struct sph_domain domain;
   struct sph_parts part[SPH_NKINDS]; /**< indexed by enum sph_kind */
   int64_t next_id;
@@ -161,8 +161,8 @@ void sph_cells_free(struct sph_cells *c);
  *  particles index[offset[i] .. offset[i+1]) of kind `other`. */
 struct sph_nlist {
   enum sph_kind query, other;
-  size_t n;        /**< number of query particles (rows) */
-  size_t *offset;  /**< n + 1 entries */
+  size_t n;       /**< number of query particles (rows) */
+  size_t *offset; /**< n + 1 entries */
   size_t *index;
   size_t capacity; /**< allocated length of index */
 };
@@ -184,8 +184,7 @@ void sph_nlist_free(struct sph_nlist *nl);
  * Vertices of segment j of s, as positions shifted by whole periods so that they lie next to the
  * point `near` (minimum image); v[k][0..2] for k < dim.
  */
-void sph_segment_vertices(const struct sph_system *s, size_t j, const double *near,
-                          double v[3][3]);
+void sph_segment_vertices(const struct sph_system *s, size_t j, const double *near, double v[3][3]);
 /**
  * Distance from point a to the element with vertices v (1D: point; 2D: segment; 3D: triangle),
  * and the closest point q. Returns the distance [m].
@@ -297,8 +296,8 @@ int sph_mesh_write_stl(const struct sph_mesh *m, const char *path, int binary);
 /** Resolved `geometry` section of a case file (docs/sph-geometry.md). */
 struct sph_geometry {
   int dim;
-  double dr;        /**< particle spacing Δr [m] */
-  double h_over_dr; /**< h / Δr [-] */
+  double dr;                /**< particle spacing Δr [m] */
+  double h_over_dr;         /**< h / Δr [-] */
   double min_wall_distance; /**< fluid particles closer to a wall are not created [m] */
   struct sph_domain domain;
   struct sph_mesh walls; /**< refined, merged, checked */
@@ -309,7 +308,7 @@ struct sph_geometry {
     double lo[3], hi[3]; /**< box, or bounding box of the polygon */
     size_t npts;
     double (*pts)[2];
-  } *regions;
+  } * regions;
 };
 
 /**

@@ -13,12 +13,11 @@
 #define PI 3.14159265358979323846
 
 enum wall_type { W_INTERVAL, W_BOX, W_CHANNEL, W_STEP, W_WEDGE, W_POLYGON, W_POLYLINE_FILE, W_STL };
-static const char *const wall_types[] = {"interval", "box",     "channel",       "step",
-                                         "wedge",    "polygon", "polyline_file", "stl",
-                                         NULL};
+static const char *const wall_types[] = {"interval", "box",           "channel", "step", "wedge",
+                                         "polygon",  "polyline_file", "stl",     NULL};
 /* Dimensions each type exists in (bit d). */
-static const unsigned wall_dims[] = {1u << 1, 0xEu, 0xCu, 1u << 2, 1u << 2, 1u << 2, 1u << 2,
-                                     1u << 3};
+static const unsigned wall_dims[] = {1u << 1, 0xEu,    0xCu,    1u << 2,
+                                     1u << 2, 1u << 2, 1u << 2, 1u << 3};
 static const char *const face_names[] = {"x-", "x+", "y-", "y+", "z-", "z+", NULL};
 static const char *const axis_names[] = {"x", "y", "z", NULL};
 
@@ -124,8 +123,8 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
       const double pts[6][2] = {{lo[0], lo[1] + sh}, {lo[0] + sl, lo[1] + sh}, {lo[0] + sl, lo[1]},
                                 {hi[0], lo[1]},      {hi[0], hi[1]},           {lo[0], hi[1]}};
       /* Edges: step top, riser, floor, right end, top, left end. */
-      uint8_t oe[6] = {open >> 2 & 1u, 0, open >> 2 & 1u, open >> 1 & 1u, open >> 3 & 1u,
-                       open & 1u};
+      uint8_t oe[6] = {open >> 2 & 1u, 0,        open >> 2 & 1u, open >> 1 & 1u,
+                       open >> 3 & 1u, open & 1u};
       sph_mesh_polygon(m, 6, pts, 1, 1, oe, sph_mesh_add_source(m, src));
       break;
     }
@@ -153,8 +152,9 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
       cmn_case_opt_bool(c, key(p, sizeof p, entry, "closed"), 1, &closed);
       cmn_case_opt_choice(c, key(p, sizeof p, entry, "fluid"), sides, closed ? 0 : 2, &fluid);
       if ((fluid >= 2) == closed)
-        cmn_case_fail(c, p, "%s", closed ? "a closed polygon has the fluid inside or outside"
-                                         : "an open polyline has the fluid on its left or right");
+        cmn_case_fail(c, p, "%s",
+                      closed ? "a closed polygon has the fluid inside or outside"
+                             : "an open polyline has the fluid on its left or right");
       size_t n;
       double(*pts)[2] = get_points(c, key(p, sizeof p, entry, "points"), closed ? 3 : 2, &n);
       size_t nedges = closed ? n : n - 1;
@@ -192,10 +192,11 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
         if (rc == 0 && !any_periodic) { /* orientation of a closed surface as a whole */
           double vol = sph_mesh_signed_volume(m, s0);
           if (sph_mesh_check(m, NULL, msg, sizeof msg) == 0 && (vol > 0) != (fluid == 0))
-            cmn_input_error("%s: %s: the surface encloses a negative volume with fluid: %s, so "
-                            "its facets are ordered clockwise seen from outside the solid "
-                            "(inside out); fix the file, or set fluid: %s if that was meant",
-                            cmn_case_name(c), path, sides[fluid], sides[!fluid]);
+            cmn_input_error(
+                "%s: %s: the surface encloses a negative volume with fluid: %s, so "
+                "its facets are ordered clockwise seen from outside the solid "
+                "(inside out); fix the file, or set fluid: %s if that was meant",
+                cmn_case_name(c), path, sides[fluid], sides[!fluid]);
         }
       } else {
         rc = sph_mesh_read_polyline(m, path, fluid == 0, msg, sizeof msg);
@@ -271,8 +272,10 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
         dom->hi[a] = fmax(dom->hi[a], g->regions[r].hi[a]);
       }
       if (!(dom->hi[a] > dom->lo[a]))
-        cmn_case_fail(c, "geometry", "no walls or fluid regions to size the domain in %c: give "
-                      "geometry.domain", "xyz"[a]);
+        cmn_case_fail(c, "geometry",
+                      "no walls or fluid regions to size the domain in %c: give "
+                      "geometry.domain",
+                      "xyz"[a]);
     }
   }
 
@@ -288,11 +291,12 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
   geom_mesh_identify_periodic(&g->walls, dom, 1e-6 * g->dr);
   if (sph_mesh_check(&g->walls, dom, msg, sizeof msg))
     cmn_input_error("%s: geometry.walls: %s", cmn_case_name(c), msg);
-  if (g->walls.nelem == 0 && !(dom->periodic[0] && (g->dim < 2 || dom->periodic[1]) &&
-                               (g->dim < 3 || dom->periodic[2])))
-    cmn_warning("%s: geometry: no walls and not periodic in every direction: the fluid is "
-                "unbounded",
-                cmn_case_name(c));
+  if (g->walls.nelem == 0 &&
+      !(dom->periodic[0] && (g->dim < 2 || dom->periodic[1]) && (g->dim < 3 || dom->periodic[2])))
+    cmn_warning(
+        "%s: geometry: no walls and not periodic in every direction: the fluid is "
+        "unbounded",
+        cmn_case_name(c));
 }
 
 void sph_geometry_free(struct sph_geometry *g) {

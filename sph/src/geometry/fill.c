@@ -44,9 +44,9 @@ void sph_system_add_walls(struct sph_system *s, const struct sph_mesh *m) {
   }
   for (size_t i = 0; i < m->nvert; i++) {
     size_t iv = v0 + i;
-    double len = sqrt(pv->normal[0][iv] * pv->normal[0][iv] +
-                      pv->normal[1][iv] * pv->normal[1][iv] +
-                      pv->normal[2][iv] * pv->normal[2][iv]);
+    double len =
+        sqrt(pv->normal[0][iv] * pv->normal[0][iv] + pv->normal[1][iv] * pv->normal[1][iv] +
+             pv->normal[2][iv] * pv->normal[2][iv]);
     for (int a = 0; a < 3; a++) pv->normal[a][iv] = len > 0 ? pv->normal[a][iv] / len : 0.0;
     if (seen[i] & 2u) pv->flags[iv] |= SPH_FLAG_OPEN;
     if (seen[i] == 3u) pv->flags[iv] |= SPH_FLAG_CORNER;
@@ -137,12 +137,13 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
       double cells = (reg->hi[a] - reg->lo[a]) / dr;
       n[a] = (long)floor(cells + 1e-9);
       if (n[a] < 1) n[a] = 1;
-      if (s->domain.periodic[a] && fabs(reg->hi[a] - reg->lo[a] -
-                                        (s->domain.hi[a] - s->domain.lo[a])) < 1e-9 * dr &&
+      if (s->domain.periodic[a] &&
+          fabs(reg->hi[a] - reg->lo[a] - (s->domain.hi[a] - s->domain.lo[a])) < 1e-9 * dr &&
           fabs(cells - (double)n[a]) > 1e-6)
-        cmn_warning("fluid region %d spans the periodic direction %c but its length is not a "
-                    "multiple of dr: the spacing across the periodic boundary differs",
-                    r, "xyz"[a]);
+        cmn_warning(
+            "fluid region %d spans the periodic direction %c but its length is not a "
+            "multiple of dr: the spacing across the periodic boundary differs",
+            r, "xyz"[a]);
       total *= (size_t)n[a];
       if (total > (size_t)1 << 34)
         cmn_input_error("fluid region %d: more than 2^34 lattice points at dr = %g", r, dr);
@@ -171,7 +172,8 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
     for (size_t i = 0; i < total; i++) {
       double x[3] = {pc->x[0][i], pc->x[1][i], pc->x[2][i]};
       dist[i] = INFINITY;
-      side[i] = nl.offset[i] == nl.offset[i + 1] ? -1 : (signed char)wall_side(&t, &nl, i, x, &dist[i]);
+      side[i] =
+          nl.offset[i] == nl.offset[i + 1] ? -1 : (signed char)wall_side(&t, &nl, i, x, &dist[i]);
     }
     /* Far points: breadth-first from the points whose side is known, along lattice edges. */
     size_t *queue = cmn_malloc(total * sizeof *queue), head = 0, tail = 0;

@@ -207,7 +207,7 @@ void geom_mesh_identify_periodic(struct sph_mesh *m, const struct sph_domain *do
  * ------------------------------------------------------------------------------------------ */
 struct edge_table {
   size_t cap, n;
-  size_t *a, *b;  /* a < b; SIZE_MAX marks an empty slot */
+  size_t *a, *b; /* a < b; SIZE_MAX marks an empty slot */
   size_t *value;
 };
 
@@ -391,8 +391,8 @@ void sph_mesh_refine(struct sph_mesh *m, double dr) {
  * ------------------------------------------------------------------------------------------ */
 static void describe(const struct sph_mesh *m, size_t e, char *buf, size_t len) {
   const char *what = m->dim == 1 ? "point" : m->dim == 2 ? "segment" : "triangle";
-  const char *src = m->source[e] >= 0 && m->source[e] < m->nsources ? m->sources[m->source[e]]
-                                                                   : "walls";
+  const char *src =
+      m->source[e] >= 0 && m->source[e] < m->nsources ? m->sources[m->source[e]] : "walls";
   long idx = m->source_index[e] ? m->source_index[e] : (long)e + 1;
   snprintf(buf, len, "%s: %s %ld", src, what, idx);
 }

@@ -38,9 +38,8 @@ static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int 
   if (pl->line == 0) return 0;
   size_t need = pl->closed ? 3 : 2;
   if (pl->n < need)
-    return report(msg, msglen, "%s:%ld: %s with %zu point%s: it needs at least %zu", path,
-                  pl->line, pl->closed ? "polygon" : "polyline", pl->n, pl->n == 1 ? "" : "s",
-                  need);
+    return report(msg, msglen, "%s:%ld: %s with %zu point%s: it needs at least %zu", path, pl->line,
+                  pl->closed ? "polygon" : "polyline", pl->n, pl->n == 1 ? "" : "s", need);
   if (!pl->closed && pl->open[pl->n - 1])
     return report(msg, msglen,
                   "%s:%ld: the last point of an open polyline starts no edge: 'open' not allowed "
@@ -76,8 +75,10 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
     int nt = 0;
     for (char *save = NULL, *t = strtok_r(buf, " \t\r\n", &save); t;
          t = strtok_r(NULL, " \t\r\n", &save))
-      if (nt < 4) tok[nt++] = t;
-      else nt = 5;
+      if (nt < 4)
+        tok[nt++] = t;
+      else
+        nt = 5;
     if (nt == 0) continue;
     if (nt == 1 && (strcmp(tok[0], "polygon") == 0 || strcmp(tok[0], "polyline") == 0)) {
       rc = flush(m, &pl, path, fluid_inside, source, msg, msglen);
@@ -97,8 +98,7 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
       break;
     }
     if (pl.line == 0) {
-      rc = report(msg, msglen, "%s:%ld: point before any 'polygon' or 'polyline' line", path,
-                  line);
+      rc = report(msg, msglen, "%s:%ld: point before any 'polygon' or 'polyline' line", path, line);
       break;
     }
     if (pl.n == pl.cap) {

@@ -70,7 +70,8 @@ static int next_token(struct lexer *lx) {
     lx->p++;
   }
   size_t n = 0;
-  while (lx->p < lx->end && !(*lx->p == ' ' || *lx->p == '\t' || *lx->p == '\r' || *lx->p == '\n')) {
+  while (lx->p < lx->end &&
+         !(*lx->p == ' ' || *lx->p == '\t' || *lx->p == '\r' || *lx->p == '\n')) {
     if (n + 1 < sizeof lx->tok) lx->tok[n++] = *lx->p;
     lx->p++;
   }
@@ -88,8 +89,8 @@ static int expect(struct lexer *lx, const char *word, const char *path, char *ms
                 lx->p < lx->end || lx->tok[0] ? lx->tok : "end of file");
 }
 
-static int read_numbers(struct lexer *lx, double *x, const char *what, const char *path,
-                        char *msg, size_t msglen) {
+static int read_numbers(struct lexer *lx, double *x, const char *what, const char *path, char *msg,
+                        size_t msglen) {
   for (int a = 0; a < 3; a++)
     if (!next_token(lx) || cmn_parse_double(lx->tok, &x[a]) != 0)
       return report(msg, msglen, "%s:%ld: expected three numbers after '%s', got '%s'", path,
@@ -109,8 +110,8 @@ static int read_ascii(struct sph_mesh *m, const char *buf, size_t len, const cha
     solids++;
     for (;;) {
       if (!next_token(&lx))
-        return report(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got end of file",
-                      path, lx.line);
+        return report(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got end of file", path,
+                      lx.line);
       if (strcmp(lx.tok, "endsolid") == 0) {
         skip_line(&lx);
         break;
@@ -173,8 +174,9 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
   size_t v0 = m->nvert;
   int rc = 0;
   uint32_t count = 0;
-  if (len >= 84) count = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 | (uint32_t)buf[82] << 16 |
-                         (uint32_t)buf[83] << 24;
+  if (len >= 84)
+    count = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 | (uint32_t)buf[82] << 16 |
+            (uint32_t)buf[83] << 24;
   if (len >= 84 && len == 84 + 50 * (size_t)count) {
     if (count == 0) rc = report(msg, msglen, "%s: binary STL with no triangles", path);
     for (uint32_t t = 0; t < count && rc == 0; t++) {

@@ -20,18 +20,16 @@ struct vtk_array {
   int ncomp;
   size_t n; /* tuples */
   enum vtk_source src;
-  const struct sph_parts *p;   /* SRC_FIELD */
-  const struct sph_field *f;   /* SRC_FIELD */
-  const size_t *map;           /* SRC_FIELD: tuple i is particle map[i] (NULL: i) */
-  const double (*pos)[3];      /* SRC_POINTS */
-  const size_t *conn;          /* SRC_CONN (NULL: 0, 1, 2, ...) */
-  int per_cell;                /* SRC_OFFSETS */
-  uint8_t cell_type;           /* SRC_TYPES */
+  const struct sph_parts *p; /* SRC_FIELD */
+  const struct sph_field *f; /* SRC_FIELD */
+  const size_t *map;         /* SRC_FIELD: tuple i is particle map[i] (NULL: i) */
+  const double (*pos)[3];    /* SRC_POINTS */
+  const size_t *conn;        /* SRC_CONN (NULL: 0, 1, 2, ...) */
+  int per_cell;              /* SRC_OFFSETS */
+  uint8_t cell_type;         /* SRC_TYPES */
 };
 
-static size_t elem_size(enum sph_field_type t) {
-  return t == SPH_FIELD_UINT8 ? 1 : 8;
-}
+static size_t elem_size(enum sph_field_type t) { return t == SPH_FIELD_UINT8 ? 1 : 8; }
 
 static const char *vtk_type(enum sph_field_type t) {
   return t == SPH_FIELD_DOUBLE ? "Float64" : t == SPH_FIELD_UINT8 ? "UInt8" : "Int64";
@@ -85,8 +83,8 @@ static int write_vtu(const char *path, size_t npoints, size_t ncells, const stru
       if (arr[i].section != (enum vtk_section)s) continue;
       fprintf(f, "        <DataArray type=\"%s\"", vtk_type(arr[i].type));
       if (arr[i].name) fprintf(f, " Name=\"%s\"", arr[i].name);
-      fprintf(f, " NumberOfComponents=\"%d\" format=\"appended\" offset=\"%llu\"/>\n",
-              arr[i].ncomp, (unsigned long long)offset);
+      fprintf(f, " NumberOfComponents=\"%d\" format=\"appended\" offset=\"%llu\"/>\n", arr[i].ncomp,
+              (unsigned long long)offset);
       offset += 8 + arr[i].n * (uint64_t)arr[i].ncomp * elem_size(arr[i].type);
     }
     fprintf(f, "      </%s>\n", tags[s]);
@@ -117,8 +115,14 @@ static int add_fields(struct vtk_array *arr, int narr, enum vtk_section sec,
     const struct sph_field *f = &fields[k];
     if (!sph_parts_field_data(p, f, 0) || f->type == SPH_FIELD_SIZE) continue;
     if (strcmp(f->name, "position") == 0) continue;
-    arr[narr++] = (struct vtk_array){.section = sec, .name = f->name, .type = f->type,
-                                     .ncomp = f->ncomp, .n = n, .src = SRC_FIELD, .p = p, .f = f,
+    arr[narr++] = (struct vtk_array){.section = sec,
+                                     .name = f->name,
+                                     .type = f->type,
+                                     .ncomp = f->ncomp,
+                                     .n = n,
+                                     .src = SRC_FIELD,
+                                     .p = p,
+                                     .f = f,
                                      .map = map};
   }
   return narr;
@@ -132,14 +136,33 @@ static int write_fluid(const char *path, const struct sph_system *s) {
     if (strcmp(fields[k].name, "position") == 0) pos = &fields[k];
   struct vtk_array arr[32];
   int narr = add_fields(arr, 0, SEC_POINTDATA, p, p->n, NULL);
-  arr[narr++] = (struct vtk_array){.section = SEC_POINTS, .type = SPH_FIELD_DOUBLE, .ncomp = 3,
-                                   .n = p->n, .src = SRC_FIELD, .p = p, .f = pos};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "connectivity",
-                                   .type = SPH_FIELD_INT64, .ncomp = 1, .n = p->n, .src = SRC_CONN};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "offsets", .type = SPH_FIELD_INT64,
-                                   .ncomp = 1, .n = p->n, .src = SRC_OFFSETS, .per_cell = 1};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "types", .type = SPH_FIELD_UINT8,
-                                   .ncomp = 1, .n = p->n, .src = SRC_TYPES, .cell_type = 1};
+  arr[narr++] = (struct vtk_array){.section = SEC_POINTS,
+                                   .type = SPH_FIELD_DOUBLE,
+                                   .ncomp = 3,
+                                   .n = p->n,
+                                   .src = SRC_FIELD,
+                                   .p = p,
+                                   .f = pos};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "connectivity",
+                                   .type = SPH_FIELD_INT64,
+                                   .ncomp = 1,
+                                   .n = p->n,
+                                   .src = SRC_CONN};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "offsets",
+                                   .type = SPH_FIELD_INT64,
+                                   .ncomp = 1,
+                                   .n = p->n,
+                                   .src = SRC_OFFSETS,
+                                   .per_cell = 1};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "types",
+                                   .type = SPH_FIELD_UINT8,
+                                   .ncomp = 1,
+                                   .n = p->n,
+                                   .src = SRC_TYPES,
+                                   .cell_type = 1};
   return write_vtu(path, p->n, p->n, arr, narr);
 }
 
@@ -182,15 +205,32 @@ static int write_boundary(const char *path, const struct sph_system *s) {
   struct vtk_array arr[48];
   int narr = add_fields(arr, 0, SEC_POINTDATA, pv, np, map);
   narr = add_fields(arr, narr, SEC_CELLDATA, ps, ps->n, NULL);
-  arr[narr++] = (struct vtk_array){.section = SEC_POINTS, .type = SPH_FIELD_DOUBLE, .ncomp = 3,
-                                   .n = np, .src = SRC_POINTS, .pos = (const double(*)[3])pos};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "connectivity",
-                                   .type = SPH_FIELD_INT64, .ncomp = 1,
-                                   .n = ps->n * (size_t)dim, .src = SRC_CONN, .conn = conn};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "offsets", .type = SPH_FIELD_INT64,
-                                   .ncomp = 1, .n = ps->n, .src = SRC_OFFSETS, .per_cell = dim};
-  arr[narr++] = (struct vtk_array){.section = SEC_CELLS, .name = "types", .type = SPH_FIELD_UINT8,
-                                   .ncomp = 1, .n = ps->n, .src = SRC_TYPES,
+  arr[narr++] = (struct vtk_array){.section = SEC_POINTS,
+                                   .type = SPH_FIELD_DOUBLE,
+                                   .ncomp = 3,
+                                   .n = np,
+                                   .src = SRC_POINTS,
+                                   .pos = (const double(*)[3])pos};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "connectivity",
+                                   .type = SPH_FIELD_INT64,
+                                   .ncomp = 1,
+                                   .n = ps->n * (size_t)dim,
+                                   .src = SRC_CONN,
+                                   .conn = conn};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "offsets",
+                                   .type = SPH_FIELD_INT64,
+                                   .ncomp = 1,
+                                   .n = ps->n,
+                                   .src = SRC_OFFSETS,
+                                   .per_cell = dim};
+  arr[narr++] = (struct vtk_array){.section = SEC_CELLS,
+                                   .name = "types",
+                                   .type = SPH_FIELD_UINT8,
+                                   .ncomp = 1,
+                                   .n = ps->n,
+                                   .src = SRC_TYPES,
                                    .cell_type = cell_types[dim]};
   int rc = write_vtu(path, np, ps->n, arr, narr);
   free(pos);
@@ -220,8 +260,9 @@ static int write_pvd(const struct sph_output *o) {
   FILE *f = fopen(tmp, "w");
   int rc = -1;
   if (f) {
-    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
-               "byte_order=\"LittleEndian\">\n  <Collection>\n");
+    fprintf(f,
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+            "byte_order=\"LittleEndian\">\n  <Collection>\n");
     for (int i = 0; i < o->count; i++)
       for (int part = 0; part < 2; part++)
         fprintf(f,

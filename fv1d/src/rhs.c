@@ -106,6 +106,17 @@ int fv1d_rhs_eval(struct fv1d_solver *s, double t, const double *y, double *ydot
     }
   }
 
+#ifdef SABRE_DEBUG_CHECKS
+  /* every face flux finite; periodic ends share one flux bit for bit */
+  for (long j = 0; j <= n; ++j) {
+    if (!isfinite(face[2 * j]) || !isfinite(face[2 * j + 1]))
+      cmn_error("t = %.9g s: face %ld has a non-finite flux (%g, %g)", t, j, face[2 * j],
+                face[2 * j + 1]);
+  }
+  if (s->par.bc[0].type == FV1D_BC_PERIODIC &&
+      (face[0] != face[2 * n] || face[1] != face[2 * n + 1]))
+    cmn_error("periodic end fluxes differ");
+#endif
   const double inv_dx = 1.0 / s->dx;
   for (long i = 0; i < n; ++i) {
     ydot[2 * i] = (face[2 * i] - face[2 * i + 2]) * inv_dx;

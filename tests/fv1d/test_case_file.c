@@ -182,6 +182,44 @@ static void test_tables(void **state) {
   expect_error(sets[0], "boundaries.right.table", "cannot open");
 }
 
+/* An initial profile table (linear in x: cell averages equal the centre values) and a region
+ * given by its pressure. */
+static void test_initial_table(void **state) {
+  (void)state;
+  const char *path = "fv1d_test_profile.csv";
+  FILE *f = fopen(path, "w");
+  assert_non_null(f);
+  fputs("x,rho,u\n-0.5,1000,0\n0.5,1010,0.3\n", f);
+  fclose(f);
+  const char *sets[] = {"initial={table: fv1d_test_profile.csv, regions: [{from: 0.25, p: 812.5}]}",
+                        NULL};
+  struct fv1d_params p;
+  char msg[512];
+  int status = read_case(sets, msg, sizeof msg, &p);
+  if (status != 0) print_error("%s\n", msg);
+  assert_int_equal(status, 0);
+  struct fv1d_solver *s = fv1d_solver_create(&p);
+  const double *y = fv1d_solver_state(s);
+  for (long i = 0; i < fv1d_solver_cells(s); ++i) {
+    double x = fv1d_solver_x(s, i);
+    if (x >= 0.25) {
+      assert_rel(y[2 * i], rmn_eos_density(&p.eos, 812.5), 1e-15);
+      assert_true(y[2 * i + 1] == 0.0);
+    } else {
+      double rho = 1005.0 + 10.0 * x, u = 0.15 + 0.3 * x;
+      assert_rel(y[2 * i], rho, 1e-14);
+      /* ρu is quadratic in x: its cell average exceeds the centre product by dx²/12 ρ'u' */
+      double dx = fv1d_solver_dx(s);
+      assert_rel(y[2 * i + 1], rho * u + dx * dx / 12.0 * 10.0 * 0.3, 1e-12);
+    }
+  }
+  fv1d_solver_destroy(s);
+  fv1d_params_free(&p);
+  remove(path);
+  expect_error("initial={table: fv1d_test_profile.csv}", "initial.table", "cannot open");
+  expect_error("initial={table: x.csv, u: 0}", "initial.table", "one or the other");
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   sabre_fp_traps_on();
@@ -191,7 +229,7 @@ int main(void) {
       cmocka_unit_test(test_missing_key),    cmocka_unit_test(test_wrong_type),
       cmocka_unit_test(test_unknown_key),    cmocka_unit_test(test_bad_choice),
       cmocka_unit_test(test_non_physical),   cmocka_unit_test(test_inconsistent),
-      cmocka_unit_test(test_tables),
+      cmocka_unit_test(test_tables),         cmocka_unit_test(test_initial_table),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

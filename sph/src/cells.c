@@ -158,13 +158,23 @@ void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cel
   }
 }
 
+/* Whole periods to add to b so that it lies within half a period of a (0 in other directions). */
+static void image_shift(const struct sph_domain *dom, const double *a, const double *b,
+                        double *shift) {
+  double d[3];
+  sph_domain_delta(dom, a, b, d);
+  for (int k = 0; k < 3; k++) {
+    double len = dom->hi[k] - dom->lo[k];
+    shift[k] = d[k] == b[k] - a[k] ? 0.0 : d[k] < b[k] - a[k] ? -len : len;
+  }
+}
+
 void sph_segment_vertices(const struct sph_system *s, size_t j, const double *near,
                           double v[3][3]) {
   const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_parts *vert = &s->part[SPH_KIND_VERTEX];
-  double c[3] = {seg->x[0][j], seg->x[1][j], seg->x[2][j]}, d[3], cn[3];
-  sph_domain_delta(&s->domain, near, c, d);
-  for (int a = 0; a < 3; a++) cn[a] = near[a] + d[a];
+  double c[3] = {seg->x[0][j], seg->x[1][j], seg->x[2][j]}, sc[3], sv[3];
+  image_shift(&s->domain, near, c, sc);
   for (int k = 0; k < 3; k++) {
     if (k >= s->dim) {
       v[k][0] = v[k][1] = v[k][2] = 0;
@@ -172,8 +182,9 @@ void sph_segment_vertices(const struct sph_system *s, size_t j, const double *ne
     }
     size_t iv = seg->vertex[k][j];
     double xv[3] = {vert->x[0][iv], vert->x[1][iv], vert->x[2][iv]};
-    sph_domain_delta(&s->domain, c, xv, d);
-    for (int a = 0; a < 3; a++) v[k][a] = cn[a] + d[a];
+    image_shift(&s->domain, c, xv, sv);
+    /* Without periodic images the coordinates are the vertices' own, bit for bit. */
+    for (int a = 0; a < 3; a++) v[k][a] = xv[a] + (sv[a] + sc[a]);
   }
 }
 

@@ -134,6 +134,64 @@ static void test_fill_2d_polygons(void **state) {
   sph_geometry_free(&g);
 }
 
+/* Count of the brute-force fill of a box region [lo, hi] clipped by a closed polygon. */
+static size_t brute_fill(size_t n, const double (*poly)[2], const double *lo, const double *hi,
+                         double dr, double mwd) {
+  size_t count = 0;
+  long nx = (long)floor((hi[0] - lo[0]) / dr + 1e-9), ny = (long)floor((hi[1] - lo[1]) / dr + 1e-9);
+  for (long j = 0; j < ny; j++)
+    for (long i = 0; i < nx; i++) {
+      double p[2] = {lo[0] + (i + 0.5) * dr, lo[1] + (j + 0.5) * dr};
+      if (inside(n, poly, p) && poly_dist(n, poly, p) >= mwd - 1e-9 * dr) count++;
+    }
+  return count;
+}
+
+/* Backward-facing step and wedge generators: their polygons, open faces, fill. */
+static void test_step_wedge(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.05\n  walls:\n"
+      "    - {type: step, lo: [0, 0], hi: [2, 0.5], step_length: 0.6, step_height: 0.15,"
+      " open: [x-, x+]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [2, 0.4]}\n",
+      &g, &s);
+  const double step[6][2] = {{0, 0.15}, {0.6, 0.15}, {0.6, 0}, {2, 0}, {2, 0.5}, {0, 0.5}};
+  assert_int_equal(s.part[SPH_KIND_FLUID].n,
+                   brute_fill(6, step, (double[]){0, 0}, (double[]){2, 0.4}, 0.05, 0.025));
+  /* Perimeter 2 + 0.5 + 2 + 0.5 in segments of 0.05; open: x- (0.35 m) and x+ (0.5 m). */
+  const struct sph_parts *ps = &s.part[SPH_KIND_SEGMENT];
+  assert_int_equal(ps->n, 100);
+  size_t nopen = 0;
+  for (size_t j = 0; j < ps->n; j++) nopen += ps->flags[j] & SPH_FLAG_OPEN;
+  assert_int_equal(nopen, 7 + 10);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.02\n  walls:\n"
+      "    - {type: wedge, apex: [0.5, 0.1], angle: 70, length: 0.8, direction: 80, lid: open}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 1.0]}\n",
+      &g, &s);
+  const double pi = 3.14159265358979323846, a1 = (80 - 35) * pi / 180, a2 = (80 + 35) * pi / 180;
+  const double wedge[3][2] = {{0.5, 0.1},
+                              {0.5 + 0.8 * cos(a1), 0.1 + 0.8 * sin(a1)},
+                              {0.5 + 0.8 * cos(a2), 0.1 + 0.8 * sin(a2)}};
+  size_t expected = brute_fill(3, wedge, (double[]){0, 0}, (double[]){1.2, 1.0}, 0.02, 0.01);
+  assert_true(expected > 500);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, expected);
+  /* Lid open, arms walls: 40 + 40 wall segments of 0.02 m. */
+  ps = &s.part[SPH_KIND_SEGMENT];
+  nopen = 0;
+  for (size_t j = 0; j < ps->n; j++) nopen += ps->flags[j] & SPH_FLAG_OPEN;
+  assert_int_equal(ps->n - nopen, 80);
+  assert_true(nopen > 20);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 /* Periodic channel: the walls close across x, the seam vertices exist once. */
 static void test_channel_periodic(void **state) {
   (void)state;
@@ -218,8 +276,8 @@ static void test_fill_3d_stl(void **state) {
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_box_2d), cmocka_unit_test(test_fill_2d_polygons),
-      cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_interval_1d),
-      cmocka_unit_test(test_fill_3d_stl)};
+      cmocka_unit_test(test_box_2d),           cmocka_unit_test(test_fill_2d_polygons),
+      cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
+      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Acoustic pulse: pressure and velocity profiles against linear acoustics (pulse.py), and the
 acoustic energy history (half leaves through the right end).
-usage: plot.py OUTPUT_DIR   (writes OUTPUT_DIR/acoustic_pulse.png, prints the errors)"""
+usage: plot.py OUTPUT_DIR [--check]   (writes OUTPUT_DIR/acoustic_pulse.png, prints the errors;
+--check: exit status 1 unless every deviation is below 3 % of the amplitude and half of the
+energy has left, within 2 %)"""
 import csv
 import sys
 
@@ -23,6 +25,7 @@ def read(path):
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
     index = read(f"{out}/profiles.csv")
+    worst = 0.0
     fig, (ax_p, ax_u, ax_e) = plt.subplots(3, 1, figsize=(8, 9))
     for k, t in zip(index["index"], index["t"]):
         if int(k) % 2:
@@ -31,6 +34,7 @@ def main():
         pe = [pressure(x, t) for x in p["x"]]
         err = max(abs(a - b) for a, b in zip(p["p"], pe)) / A
         print(f"t = {t:.3f} s: max |p - p_linear| / A = {100 * err:.2f} %")
+        worst = max(worst, err)
         line = ax_p.plot(p["x"], p["p"], lw=1.2, label=f"t = {t:.2f} s")[0]
         ax_p.plot(p["x"], pe, "k--", lw=0.7)
         ax_u.plot(p["x"], p["u"], lw=1.2, color=line.get_color())
@@ -51,6 +55,8 @@ def main():
     fig.savefig(f"{out}/acoustic_pulse.png", dpi=120)
     print(f"energy left in the pipe at t = {s['t'][-1]:.3f} s: {s['energy'][-1] / e0:.4f} of the initial")
     print(f"wrote {out}/acoustic_pulse.png")
+    if "--check" in sys.argv and not (worst < 0.03 and abs(s["energy"][-1] / e0 - 0.5) < 0.01):
+        sys.exit("check failed: pulse off linear acoustics or energy not halved")
 
 
 main()

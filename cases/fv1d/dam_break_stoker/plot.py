@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Compare the fv1d dam break (xi = 2) with Stoker's wet-bed solution, computed here from the
 shock (hydraulic jump) relations and the rarefaction invariants, independently of SABRE.
-usage: plot.py OUTPUT_DIR   (writes OUTPUT_DIR/stoker.png, prints the relative L1 errors)"""
+usage: plot.py OUTPUT_DIR [--check]   (writes OUTPUT_DIR/stoker.png, prints the relative L1 errors;
+--check: exit status 1 unless every error is below 1 %)"""
 import csv
 import math
 import sys
@@ -53,6 +54,7 @@ def read(path):
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
     index = read(f"{out}/profiles.csv")
+    worst = 0.0
     fig, (ax_h, ax_u) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     for k, t in zip(index["index"], index["t"]):
         if t == 0:
@@ -61,6 +63,7 @@ def main():
         ex = [exact(x, t) for x in p["x"]]
         err = sum(abs(h - e[0]) for h, e in zip(p["rho"], ex)) / sum(e[0] for e in ex)
         print(f"t = {t:.3f} s: relative L1 error of h = {100 * err:.3f} %")
+        worst = max(worst, err)
         line = ax_h.plot(p["x"], p["rho"], lw=1.2, label=f"fv1d t = {t:.2f} s")[0]
         ax_h.plot(p["x"], [e[0] for e in ex], "k--", lw=0.8)
         ax_u.plot(p["x"], p["u"], lw=1.2, color=line.get_color())
@@ -74,6 +77,8 @@ def main():
     fig.tight_layout()
     fig.savefig(f"{out}/stoker.png", dpi=120)
     print(f"wrote {out}/stoker.png")
+    if "--check" in sys.argv and not worst < 0.01:
+        sys.exit(f"check failed: relative L1 error {100 * worst:.3f} % >= 1 %")
 
 
 main()

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Pipe start-up: velocity at mid-pipe and mean velocity against the linear-acoustics solution
 (method of images for a pipe with imposed pressure at both ends) and the rigid-column law.
-usage: plot.py OUTPUT_DIR   (writes OUTPUT_DIR/pipe_startup.png)"""
+usage: plot.py OUTPUT_DIR [--check]   (writes OUTPUT_DIR/pipe_startup.png; --check: exit status 1
+unless the mean velocity is within 1 % of the rigid column and the mid-pipe velocity within
+0.05 m/s of linear acoustics)"""
 import csv
 import sys
 
@@ -60,6 +62,9 @@ def main():
     print(f"final mean velocity {mean_u[-1]:.4f} m/s, rigid column {DP * (s['t'][-1] - RAMP / 2) / (RHO0 * L):.4f} m/s; "
           f"max |u - u_acoustic| at mid-pipe {err:.4f} m/s")
     print(f"wrote {out}/pipe_startup.png")
+    rigid = DP * (s["t"][-1] - RAMP / 2) / (RHO0 * L)
+    if "--check" in sys.argv and not (abs(mean_u[-1] / rigid - 1) < 0.01 and err < 0.05):
+        sys.exit("check failed: mean velocity or mid-pipe velocity off")
 
 
 main()

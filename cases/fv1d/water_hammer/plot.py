@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Water hammer: pressure profiles and the valve pressure history against Joukowsky's
 dp = rho0 c0 du and the exact shock (Rankine-Hugoniot for the Tait EOS, solved here).
-usage: plot.py OUTPUT_DIR   (writes OUTPUT_DIR/water_hammer.png, prints the measured jump)"""
+usage: plot.py OUTPUT_DIR [--check]   (writes OUTPUT_DIR/water_hammer.png, prints the measured jump;
+--check: exit status 1 unless it is within 1 % of Joukowsky and 0.1 % of the exact shock)"""
 import csv
 import math
 import sys
@@ -75,6 +76,8 @@ def main():
     fig.tight_layout()
     fig.savefig(f"{out}/water_hammer.png", dpi=120)
     print(f"wrote {out}/water_hammer.png")
+    if "--check" in sys.argv and not (abs(dp / dp_j - 1) < 0.01 and abs(dp / dp_s - 1) < 1e-3):
+        sys.exit("check failed: valve pressure plateau off Joukowsky or the exact shock")
 
 
 main()

@@ -1,0 +1,265 @@
+/*
+ * SABRE sph/ — the weakly-compressible SPH solver with unified semi-analytical walls (USAW):
+ * boundary-corrected operators, continuity in time-summation form with volume diffusion,
+ * momentum, Tait EOS (riemann/), vertex values, time step, predictor–corrector, diagnostics,
+ * probes, wall forces, checkpoints and the `run` command. Equations as implemented, with their
+ * M()/J() references: docs/sph-solver.md; case-file keys: docs/sph-case-file.md.
+ *
+ * Particle data live in the infra store (struct sph_system, sabre/sph.h); the solver keeps the
+ * fields the store does not carry (pressure, accelerations, the state at the start of a step) in
+ * struct sph_solver, indexed like the store. Every per-particle solver array is reallocated by
+ * sph_solver_sync() when the store grows, so that open boundaries (particle creation and
+ * deletion, mass-varying vertices, J 10–15) slot in without changing the step.
+ *
+ * Units: SI. Like the rest of sph/, these functions stop the program on errors they cannot report;
+ * case-file errors go through common/ (file, line, key; exit code 2).
+ */
+#ifndef SABRE_SPH_SOLVER_H
+#define SABRE_SPH_SOLVER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sabre/riemann.h"
+#include "sabre/sph.h"
+#include "sabre/sph_walls.h"
+
+struct cmn_case;
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------
+ * Neighbourhoods and wall integrals
+ * ------------------------------------------------------------------------------------------- */
+
+/**
+ * Everything a fluid particle a needs about its neighbours: lists of fluid (F), vertex (V) and
+ * segment (S) particles within `radius` = 2h + skin, the vertex → fluid list for Shepard values,
+ * and per F–S pair the wall integral ∇γ_as, J(3), and the distance from a to the segment's plane.
+ */
+struct sph_nbrs {
+  struct sph_cells cells;
+  struct sph_nlist list[SPH_NKINDS]; /**< query fluid; other = kind */
+  struct sph_nlist vf;               /**< query vertex, other fluid */
+  double radius;                     /**< list radius [m] */
+  double *grad_gamma_as[3];          /**< per pair of list[SEGMENT] [1/m] */
+  double *dist_as;                   /**< per pair: (r_a − r_s)·n_s, distance to the plane [m] */
+  size_t cap_pairs;
+  long escaped; /**< after sph_nbrs_gamma: a fluid particle behind its nearest wall, or −1 */
+};
+
+/** Build cells and lists for s with radius 2h + skin (skin ≥ 0 [m]). Reuses nb's arrays. */
+void sph_nbrs_build(struct sph_nbrs *nb, const struct sph_system *s, double skin);
+/** The same with the naive O(N²) search (tests). */
+void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, double skin);
+/**
+ * γ_a = 1 − Σ_s term_s and ∇γ_a = Σ_s ∇γ_as, J(2)–J(4), for every fluid particle from the wall
+ * integrals of sabre/sph_walls.h (closed form, no time integration), stored in s->part[FLUID].gamma
+ * and grad_gamma; ∇γ_as and the distances per pair into nb. Particles on a wall are not expected
+ * (fluid is created at least min_wall_distance from the walls).
+ */
+void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k);
+void sph_nbrs_free(struct sph_nbrs *nb);
+
+/* ---------------------------------------------------------------------------------------------
+ * Boundary-corrected operators at a fluid particle a (sph/src/operators/)
+ *
+ * Sums run over b ∈ P = F ∪ V (volume terms, V_b = m_b/ρ_b) and s ∈ S (wall terms), with the
+ * masses, densities and γ of the store; fields are given per kind (index enum sph_kind), vector
+ * fields as three component arrays per kind. r_ab = r_a − r_b, ∇w_ab = ∇_a w(r_ab).
+ * ------------------------------------------------------------------------------------------- */
+
+struct sph_op {
+  const struct sph_system *sys;
+  const struct sph_kernel *kernel;
+  const struct sph_nbrs *nb;
+};
+
+/**
+ * Grad^{γ,k}_a(f), M(37) [f/m]:
+ *   1/γ_a Σ_b V_b (ρ_a^{2k} f_b + ρ_b^{2k} f_a)/(ρ_a^k ρ_b^k) ∇w_ab
+ *   − 1/γ_a Σ_s (ρ_a^{2k} f_s + ρ_s^{2k} f_a)/(ρ_a^k ρ_s^k) ∇γ_as.
+ * k = 1 is Ferrand's J(6) / M(11); k = 0 the paper's default.
+ */
+void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
+                 double out[3]);
+/**
+ * Div^{γ,k}_a(B), M(38) [B/m]:
+ *   1/(γ_a ρ_a^{2k}) Σ_b V_b ρ_a^k ρ_b^k (B_b − B_a)·∇w_ab
+ *   − 1/(γ_a ρ_a^{2k}) Σ_s ρ_a^k ρ_s^k (B_s − B_a)·∇γ_as.
+ * k = 1 is J(7) / M(8) (with ρ_s/ρ_a on the wall term).
+ */
+double sph_op_div(const struct sph_op *op, double k, const double *const B[SPH_NKINDS][3],
+                  size_t a);
+/**
+ * Lap^γ_a(β, A), J(8) with the harmonic mean β̄_ab = 2β_aβ_b/(β_a + β_b), J(9) [β A/m²]:
+ *   1/γ_a Σ_b V_b 2 β̄_ab A_ab/r_ab² r_ab·∇w_ab − 1/γ_a Σ_s q_as |∇γ_as|,
+ * where q_as = (β_s ∂A/∂n|_s + β_a ∂A/∂n|_a) is the wall flux along the inward normal, given per
+ * F–S pair (same order as nb->list[SEGMENT]) as three component arrays, or NULL for no wall term
+ * (homogeneous Neumann). A is a vector field (unused components may be NULL → 0).
+ */
+void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+                const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
+                double out[3]);
+/** Shepard sum α_a = Σ_{b∈F} V_b w_ab, M(6) at fluid particle a (γ-free interpolation check). */
+double sph_op_shepard(const struct sph_op *op, size_t a);
+
+/* ---------------------------------------------------------------------------------------------
+ * Configuration (docs/sph-case-file.md)
+ * ------------------------------------------------------------------------------------------- */
+
+enum sph_diffusion { SPH_DIFFUSION_NONE = 0, SPH_DIFFUSION_FERRARI = 1, SPH_DIFFUSION_BREZZI = 2 };
+/** c_ab of the Ferrari term: max(c_a, c_b), M(50); or 2K/r_ab with K = c0 Δr/η, M(48), M(52). */
+enum sph_diffusion_speed { SPH_DSPEED_MAX = 0, SPH_DSPEED_ETA = 1 };
+/** Hydrostatic correction of the Shepard vertex values: none, full g·r_vb, tangential M(83). */
+enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TANGENTIAL = 2 };
+
+#define SPH_MAX_PROBES 64
+#define SPH_MAX_FORCE_GROUPS 16
+
+struct sph_force_group {
+  char name[64];
+  int wall;          /**< index into geometry.walls */
+  int nedges;        /**< 0: the whole wall */
+  long edges[64];    /**< 1-based element numbers within the wall (source_index) */
+};
+
+struct sph_config {
+  /* fluid */
+  double rho0, c0, xi, nu;
+  double gravity[3];
+  /* initial state */
+  double u0[3];
+  int hydrostatic;       /**< initial pressure hydrostatic below free_surface */
+  double free_surface;   /**< level of p = 0 along −g [m] (NaN: top of the fluid + Δr/2) */
+  /* numerics */
+  double grad_k;         /**< k of M(37)/M(38) */
+  int diffusion;         /**< enum sph_diffusion */
+  int diffusion_speed;   /**< enum sph_diffusion_speed */
+  double eta;            /**< η of M(48) */
+  double brezzi_lambda;  /**< Λ, J §II.C */
+  int gravity_correction;/**< ϱ_ab, M(81) */
+  int vertex_hydro;      /**< enum sph_vertex_hydro */
+  double cfl, viscous_factor, force_factor, gamma_factor;
+  double skin_over_h;    /**< neighbour-list skin / h */
+  double dt_max;
+  double density_band[2]; /**< stop when ρ/ρ0 leaves [lo, hi] */
+  /* time and output */
+  double t_end, output_interval;
+  long diagnostics_every; /**< steps between rows of diagnostics.csv */
+  long checkpoint_steps;  /**< 0: none */
+  double checkpoint_minutes;
+  /* probes and forces */
+  int nprobes, ngauges;
+  double probes[SPH_MAX_PROBES][3];
+  double gauges[SPH_MAX_PROBES][3];
+  int nforces;
+  struct sph_force_group forces[SPH_MAX_FORCE_GROUPS];
+};
+
+/**
+ * Read every section but `geometry` (which sph_geometry_read() owns) into cfg, with the defaults
+ * of docs/sph-case-file.md. dim and dr are needed for vector sizes and defaults. Bad input stops
+ * the program (fatal case mode) or returns -1 with the message in cmn_case_error().
+ */
+int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim);
+
+/* ---------------------------------------------------------------------------------------------
+ * Solver state and step
+ * ------------------------------------------------------------------------------------------- */
+
+struct sph_solver {
+  struct sph_config cfg;
+  struct sph_system sys;
+  struct sph_kernel kernel;
+  struct rmn_eos eos;
+  struct sph_nbrs nb;
+  double time;
+  long step;
+  double dt;
+  /* per-particle solver fields, per kind, capacity cap[kind] */
+  double *p[SPH_NKINDS];        /**< pressure [Pa] */
+  double *acc[3];               /**< fluid acceleration [m/s²] */
+  double *x0[3], *v0[3];        /**< fluid state at the start of the step */
+  double *rho_n, *gamma_n;      /**< fluid ρ^n, γ^n */
+  double *mu[SPH_NKINDS];       /**< dynamic viscosity ν ρ [Pa s] */
+  double *diff;                 /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
+  double *wall_flux[3];         /**< per F–S pair: viscous wall flux, M(19–20) */
+  size_t cap_flux;
+  int *seg_group;               /**< force group of each segment (−1 none) */
+  int *vert_group;              /**< force group of each vertex (−1 none) */
+  size_t cap[SPH_NKINDS];
+  double mass_ref;              /**< fluid + vertex mass at start (diagnostics) */
+};
+
+/**
+ * Set up a solver on a filled system (moved into sv; s is left empty): kernel, EOS, initial
+ * density and pressure (uniform or hydrostatic), masses m_a = ρ_a Δr^d, vertex masses so that
+ * the summation Σ_b m_b w_ab equals γ_a ρ_a for fluid at rest (least squares over the fluid near
+ * walls), vertex and segment values. mesh_source (may be NULL): per segment the index of its wall
+ * in geometry.walls and its element number there, for force groups.
+ */
+void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,
+                     const int *seg_wall, const long *seg_edge);
+void sph_solver_free(struct sph_solver *sv);
+/** Grow the solver's per-particle arrays to the store's sizes (after creation of particles). */
+void sph_solver_sync(struct sph_solver *sv);
+
+/** EOS for every fluid particle, then Shepard vertex values M(16–17) with the hydrostatic
+ *  correction, segment values as the mean of their vertices. */
+void sph_solver_boundary_values(struct sph_solver *sv);
+/** Accelerations of the fluid, M(14): −Grad^{γ,k}(p)/ρ + Lap^γ(μ, v)/ρ + g, with the wall shear
+ *  stress M(19–20); also the volume-diffusion rate. Needs sph_nbrs_gamma() and boundary values. */
+void sph_solver_forces(struct sph_solver *sv);
+/** Time step from the CFL, viscous, force, γ-variation and neighbour-skin limits (after forces). */
+double sph_solver_timestep(const struct sph_solver *sv);
+/**
+ * One predictor–corrector step (docs/sph-solver.md §5) of at most dt_limit (pass INFINITY):
+ * returns 0, or −1 with a message in msg when the run must stop (NaN, a particle leaving through
+ * a wall, a density outside the band): the message names the particle, position and step.
+ */
+int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen);
+
+/** Global diagnostics, one row of diagnostics.csv. */
+struct sph_diagnostics {
+  double time, dt, count, mass, kinetic, potential, internal, max_speed, max_drho;
+};
+void sph_solver_diagnostics(const struct sph_solver *sv, struct sph_diagnostics *d);
+/** Specific internal energy e(ρ) = ∫_ρ0^ρ p/ρ'² dρ' of the Tait EOS [J/kg]. */
+double sph_internal_energy(const struct rmn_eos *eos, double rho);
+/** Shepard-interpolated pressure at point x (fluid particles) [Pa]; NaN when no fluid is near. */
+double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x);
+/** Free-surface elevation at the horizontal position x (along −g) [m]; NaN when no fluid. */
+double sph_solver_gauge(const struct sph_solver *sv, const double *x);
+/** Force of the fluid on each force group [N] (pressure and viscous wall terms, vertices' volume
+ *  terms), out[group][3]. */
+void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]);
+/** Skew-adjoint defect M(27): <Grad^{γ,k} f, B> + <f, Div^{γ,k} B> over the fluid (V_a weights). */
+double sph_skew_adjoint_defect(const struct sph_solver *sv, const double *const f[SPH_NKINDS],
+                               const double *const B[SPH_NKINDS][3]);
+
+/* ---------------------------------------------------------------------------------------------
+ * Checkpoints: the whole store (through its field table), time, step and output counters.
+ * ------------------------------------------------------------------------------------------- */
+struct sph_run_counters {
+  double next_output;
+  long outputs;
+  double *output_times;
+};
+/** Write atomically (tmp file + rename). Returns 0 or −1 (errno). */
+int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_counters *rc,
+                         const char *path);
+/** Read into an initialised solver (same case): replaces the store, time and step. Returns 0 or
+ *  −1 with a message. */
+int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, const char *path,
+                        char *msg, size_t msglen);
+
+/** `sabre-sph run CASE.yaml [--set k=v]... [--output DIR] [--restart FILE] [--threads N]`. */
+int sph_cmd_run(int argc, char **argv);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SABRE_SPH_SOLVER_H */

@@ -1,0 +1,144 @@
+/*
+ * Global diagnostics (diagnostics.csv), pressure probes by Shepard interpolation, free-surface
+ * gauges, forces on the wall groups, and the skew-adjoint defect M(27).
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "operators/pair.h"
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+
+double sph_internal_energy(const struct rmn_eos *e, double rho) {
+  const double r = rho / e->rho0, c2 = e->c0 * e->c0;
+  if (e->isothermal) return c2 * (log(r) + 1.0 / r - 1.0);
+  /* ∫ b ((ρ/ρ0)^ξ − 1)/ρ² dρ = b/ρ0 [ (r^(ξ−1) − 1)/(ξ − 1) + 1/r − 1 ] */
+  return e->b / e->rho0 * (expm1((e->xi - 1.0) * log(r)) / (e->xi - 1.0) + 1.0 / r - 1.0);
+}
+
+void sph_solver_diagnostics(const struct sph_solver *sv, struct sph_diagnostics *d) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID], *v = &sv->sys.part[SPH_KIND_VERTEX];
+  const double *g = sv->cfg.gravity;
+  double mass = 0.0, kin = 0.0, pot = 0.0, inte = 0.0, vmax = 0.0, dmax = 0.0;
+  for (size_t a = 0; a < f->n; a++) {
+    double v2 = 0.0, gx = 0.0;
+    for (int c = 0; c < 3; c++) {
+      v2 += f->v[c][a] * f->v[c][a];
+      gx += g[c] * f->x[c][a];
+    }
+    mass += f->mass[a];
+    kin += 0.5 * f->mass[a] * v2;
+    pot -= f->mass[a] * gx;
+    inte += f->mass[a] * sph_internal_energy(&sv->eos, f->rho[a]);
+    vmax = fmax(vmax, sqrt(v2));
+    dmax = fmax(dmax, fabs(f->rho[a] / sv->cfg.rho0 - 1.0));
+  }
+  for (size_t i = 0; i < v->n; i++) mass += v->mass[i];
+  d->time = sv->time;
+  d->dt = sv->dt;
+  d->count = (double)f->n;
+  d->mass = mass;
+  d->kinetic = kin;
+  d->potential = pot;
+  d->internal = inte;
+  d->max_speed = vmax;
+  d->max_drho = dmax;
+}
+
+/* Naive loops: probes and gauges are few and evaluated at output rows only. */
+double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x) {
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double support = sph_kernel_support(&sv->kernel);
+  double alpha = 0.0, sum = 0.0;
+  for (size_t b = 0; b < f->n; b++) {
+    const double xb[3] = {f->x[0][b], f->x[1][b], f->x[2][b]};
+    double d[3];
+    sph_domain_delta(&s->domain, xb, x, d);
+    double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (r >= support) continue;
+    double vw = f->mass[b] / f->rho[b] * sph_kernel_w_inline(&sv->kernel, r);
+    alpha += vw;
+    sum += vw * rmn_eos_pressure(&sv->eos, f->rho[b]);
+  }
+  return alpha > 0.0 ? sum / alpha : NAN;
+}
+
+double sph_solver_gauge(const struct sph_solver *sv, const double *x) {
+  /* Highest fluid particle (along −g) within Δr/2 of the gauge's vertical line, plus Δr/2. */
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double *g = sv->cfg.gravity;
+  const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  const double up[3] = {gn > 0 ? -g[0] / gn : 0, gn > 0 ? -g[1] / gn : 1, gn > 0 ? -g[2] / gn : 0};
+  double top = -INFINITY;
+  for (size_t b = 0; b < f->n; b++) {
+    const double xb[3] = {f->x[0][b], f->x[1][b], f->x[2][b]};
+    double d[3];
+    sph_domain_delta(&s->domain, x, xb, d);
+    double dz = d[0] * up[0] + d[1] * up[1] + d[2] * up[2];
+    double lat2 = 0.0;
+    for (int c = 0; c < 3; c++) lat2 += (d[c] - dz * up[c]) * (d[c] - dz * up[c]);
+    if (lat2 > 0.25 * s->dr * s->dr) continue;
+    top = fmax(top, xb[0] * up[0] + xb[1] * up[1] + xb[2] * up[2]);
+  }
+  return isfinite(top) ? top + 0.5 * s->dr : NAN;
+}
+
+void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nlv = &sv->nb.list[SPH_KIND_VERTEX], *nls = &sv->nb.list[SPH_KIND_SEGMENT];
+  const double k = sv->cfg.grad_k;
+  for (int g = 0; g < sv->cfg.nforces; g++) out[g][0] = out[g][1] = out[g][2] = 0.0;
+  /* Minus the wall contributions to m_a dv_a/dt of sph_solver_forces(), per group. */
+  for (size_t a = 0; a < f->n; a++) {
+    const double rho_a = f->rho[a], pa = sv->p[SPH_KIND_FLUID][a];
+    const double fac = f->mass[a] / (rho_a * f->gamma[a]);
+    const double mua = sv->mu[SPH_KIND_FLUID][a];
+    for (size_t q = nlv->offset[a]; q < nlv->offset[a + 1]; q++) {
+      size_t b = nlv->index[q];
+      int g = sv->vert_group[b];
+      struct sph_pair pr;
+      if (g < 0 || !sph_pair_eval(&sv->kernel, s, f, a, v, b, &pr)) continue;
+      const double vb = v->mass[b] / v->rho[b], ratio = sph_rho_ratio_k(rho_a, v->rho[b], k);
+      const double tp = vb * (ratio * sv->p[SPH_KIND_VERTEX][b] + pa / ratio) * pr.dwdr_over_r;
+      const double mub = sv->mu[SPH_KIND_VERTEX][b];
+      const double bbar = mua + mub > 0 ? 2.0 * mua * mub / (mua + mub) : 0.0;
+      const double tv = pr.dist > 0 ? vb * 2.0 * bbar * pr.dwdr_over_r : 0.0;
+      for (int c = 0; c < 3; c++)
+        out[g][c] -= fac * (-tp * pr.r[c] + tv * (f->v[c][a] - v->v[c][b]));
+    }
+    for (size_t q = nls->offset[a]; q < nls->offset[a + 1]; q++) {
+      size_t j = nls->index[q];
+      int g = sv->seg_group[j];
+      if (g < 0) continue;
+      const double ratio = sph_rho_ratio_k(rho_a, sg->rho[j], k);
+      const double tp = ratio * sv->p[SPH_KIND_SEGMENT][j] + pa / ratio;
+      double mag = 0.0;
+      for (int c = 0; c < 3; c++) mag += sv->nb.grad_gamma_as[c][q] * sv->nb.grad_gamma_as[c][q];
+      mag = sqrt(mag);
+      for (int c = 0; c < 3; c++) {
+        double visc = sv->cfg.nu > 0.0 ? -sv->wall_flux[c][q] * mag : 0.0;
+        out[g][c] -= fac * (tp * sv->nb.grad_gamma_as[c][q] + visc);
+      }
+    }
+  }
+}
+
+double sph_skew_adjoint_defect(const struct sph_solver *sv, const double *const fk[SPH_NKINDS],
+                               const double *const B[SPH_NKINDS][3]) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const struct sph_op op = {&sv->sys, &sv->kernel, &sv->nb};
+  double sum = 0.0;
+  for (size_t a = 0; a < f->n; a++) {
+    double g[3];
+    sph_op_grad(&op, sv->cfg.grad_k, fk, a, g);
+    double div = sph_op_div(&op, sv->cfg.grad_k, B, a);
+    double gb = 0.0;
+    for (int c = 0; c < 3; c++) gb += g[c] * (B[SPH_KIND_FLUID][c] ? B[SPH_KIND_FLUID][c][a] : 0.0);
+    sum += f->mass[a] / f->rho[a] * (gb + fk[SPH_KIND_FLUID][a] * div);
+  }
+  return sum;
+}

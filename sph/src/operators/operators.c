@@ -1,0 +1,131 @@
+/*
+ * Boundary-corrected SPH operators at a fluid particle (THEORY §3.2, docs/sph-solver.md §2):
+ * Grad^{γ,k} M(37) (k = 1: J 6 / M 11), Div^{γ,k} M(38) (k = 1: J 7 / M 8), Lap^γ J(8) with the
+ * harmonic mean J(9). Gather form: particle a sums over its neighbours, deterministic for a fixed
+ * thread count. The pair geometry is shared with the solver through operators/pair.h.
+ */
+#include <math.h>
+
+#include "operators/pair.h"
+#include "sabre/sph_solver.h"
+
+void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
+                 double out[3]) {
+  const struct sph_system *s = op->sys;
+  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
+  const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
+  double g[3] = {0.0, 0.0, 0.0};
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &s->part[kind];
+    const struct sph_nlist *nl = &op->nb->list[kind];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr)) continue;
+      const double rho_b = pb->rho[b], vb = pb->mass[b] / rho_b;
+      const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
+      const double t = vb * (ratio * f[kind][b] + fa / ratio) * pr.dwdr_over_r;
+      for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
+    }
+  }
+  const struct sph_parts *ps = &s->part[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    size_t j = nl->index[q];
+    const double ratio = sph_rho_ratio_k(rho_a, ps->rho[j], k);
+    const double t = ratio * f[SPH_KIND_SEGMENT][j] + fa / ratio;
+    for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
+  }
+  const double inv_gamma = 1.0 / pa->gamma[a];
+  for (int c = 0; c < 3; c++) out[c] = g[c] * inv_gamma;
+}
+
+static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }
+
+double sph_op_div(const struct sph_op *op, double k, const double *const B[SPH_NKINDS][3],
+                  size_t a) {
+  const struct sph_system *s = op->sys;
+  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
+  const double rho_a = pa->rho[a];
+  const double Ba[3] = {comp(B[SPH_KIND_FLUID], 0, a), comp(B[SPH_KIND_FLUID], 1, a),
+                        comp(B[SPH_KIND_FLUID], 2, a)};
+  double sum = 0.0;
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &s->part[kind];
+    const struct sph_nlist *nl = &op->nb->list[kind];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr)) continue;
+      const double vb = pb->mass[b] / pb->rho[b];
+      /* ρ_a^k ρ_b^k / ρ_a^{2k} = (ρ_b/ρ_a)^k */
+      const double ratio = 1.0 / sph_rho_ratio_k(rho_a, pb->rho[b], k);
+      double dot = 0.0;
+      for (int c = 0; c < 3; c++) dot += (comp(B[kind], c, b) - Ba[c]) * pr.r[c];
+      sum += vb * ratio * dot * pr.dwdr_over_r;
+    }
+  }
+  const struct sph_parts *ps = &s->part[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    size_t j = nl->index[q];
+    const double ratio = 1.0 / sph_rho_ratio_k(rho_a, ps->rho[j], k);
+    double dot = 0.0;
+    for (int c = 0; c < 3; c++)
+      dot += (comp(B[SPH_KIND_SEGMENT], c, j) - Ba[c]) * op->nb->grad_gamma_as[c][q];
+    sum -= ratio * dot;
+  }
+  return sum / pa->gamma[a];
+}
+
+void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+                const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
+                double out[3]) {
+  const struct sph_system *s = op->sys;
+  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
+  const double beta_a = beta[SPH_KIND_FLUID][a];
+  const double Aa[3] = {comp(A[SPH_KIND_FLUID], 0, a), comp(A[SPH_KIND_FLUID], 1, a),
+                        comp(A[SPH_KIND_FLUID], 2, a)};
+  double l[3] = {0.0, 0.0, 0.0};
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &s->part[kind];
+    const struct sph_nlist *nl = &op->nb->list[kind];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr) || pr.dist == 0.0) continue;
+      const double beta_b = beta[kind][b];
+      const double bsum = beta_a + beta_b;
+      const double bbar = bsum > 0.0 ? 2.0 * beta_a * beta_b / bsum : 0.0; /* J(9) */
+      /* r_ab·∇w_ab / r_ab² = dw/dr / r */
+      const double t = pb->mass[b] / pb->rho[b] * 2.0 * bbar * pr.dwdr_over_r;
+      for (int c = 0; c < 3; c++) l[c] += t * (Aa[c] - comp(A[kind], c, b));
+    }
+  }
+  if (wall_flux) {
+    const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      const double *gg[3] = {op->nb->grad_gamma_as[0], op->nb->grad_gamma_as[1],
+                             op->nb->grad_gamma_as[2]};
+      const double mag = sqrt(gg[0][q] * gg[0][q] + gg[1][q] * gg[1][q] + gg[2][q] * gg[2][q]);
+      for (int c = 0; c < 3; c++)
+        if (wall_flux[c]) l[c] -= wall_flux[c][q] * mag;
+    }
+  }
+  const double inv_gamma = 1.0 / pa->gamma[a];
+  for (int c = 0; c < 3; c++) out[c] = l[c] * inv_gamma;
+}
+
+double sph_op_shepard(const struct sph_op *op, size_t a) {
+  const struct sph_system *s = op->sys;
+  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
+  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_FLUID];
+  double sum = pa->mass[a] / pa->rho[a] * sph_kernel_w_inline(op->kernel, 0.0);
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    size_t b = nl->index[q];
+    struct sph_pair pr;
+    if (!sph_pair_eval(op->kernel, s, pa, a, pa, b, &pr)) continue;
+    sum += pa->mass[b] / pa->rho[b] * pr.w;
+  }
+  return sum;
+}

@@ -1,0 +1,138 @@
+/* The solver's sections of a case file: fluid, gravity, initial, numerics, time, probes, forces
+ * (reference with units and defaults: docs/sph-case-file.md; `geometry` is read by
+ * sph_geometry_read()). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+
+#define TRY(x)            \
+  do {                    \
+    if ((x) != 0) return -1; \
+  } while (0)
+
+static int opt_vector(struct cmn_case *c, const char *path, int dim, double *x) {
+  const double zero[3] = {0.0, 0.0, 0.0};
+  x[0] = x[1] = x[2] = 0.0;
+  return cmn_case_opt_doubles(c, path, dim, zero, x);
+}
+
+static int read_points(struct cmn_case *c, const char *path, int dim, double (*pts)[3], int *n) {
+  int len = cmn_case_seq_length(c, path);
+  if (len < 0) return -1;
+  if (len > SPH_MAX_PROBES)
+    return cmn_case_fail(c, path, "at most %d points are supported", SPH_MAX_PROBES);
+  for (int i = 0; i < len; i++) {
+    char q[128];
+    snprintf(q, sizeof q, "%s[%d]", path, i);
+    pts[i][0] = pts[i][1] = pts[i][2] = 0.0;
+    TRY(cmn_case_get_doubles(c, q, dim, dim, pts[i], NULL));
+  }
+  *n = len;
+  return 0;
+}
+
+static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
+  int n = cmn_case_seq_length(c, "forces");
+  if (n < 0) return -1;
+  if (n > SPH_MAX_FORCE_GROUPS)
+    return cmn_case_fail(c, "forces", "at most %d force groups are supported",
+                         SPH_MAX_FORCE_GROUPS);
+  int nwalls = cmn_case_seq_length(c, "geometry.walls");
+  for (int i = 0; i < n; i++) {
+    struct sph_force_group *g = &cfg->forces[i];
+    char p[128];
+    const char *name;
+    long wall;
+    snprintf(p, sizeof p, "forces[%d].name", i);
+    TRY(cmn_case_get_string(c, p, &name));
+    if (strlen(name) == 0 || strlen(name) >= sizeof g->name || strpbrk(name, ", \"\n"))
+      return cmn_case_fail(c, p, "expected a name of 1 to %zu characters without spaces, commas "
+                           "or quotes", sizeof g->name - 1);
+    for (int j = 0; j < i; j++)
+      if (strcmp(cfg->forces[j].name, name) == 0)
+        return cmn_case_fail(c, p, "duplicate force group name '%s'", name);
+    snprintf(g->name, sizeof g->name, "%s", name);
+    snprintf(p, sizeof p, "forces[%d].wall", i);
+    TRY(cmn_case_get_long(c, p, 0, nwalls > 0 ? nwalls - 1 : 0, &wall));
+    if (nwalls <= 0) return cmn_case_fail(c, p, "there are no geometry.walls");
+    g->wall = (int)wall;
+    snprintf(p, sizeof p, "forces[%d].edges", i);
+    int ne = cmn_case_seq_length(c, p);
+    if (ne < 0) return -1;
+    if (ne > (int)(sizeof g->edges / sizeof g->edges[0]))
+      return cmn_case_fail(c, p, "at most %zu edges", sizeof g->edges / sizeof g->edges[0]);
+    g->nedges = ne;
+    for (int e = 0; e < ne; e++) {
+      char q[160];
+      snprintf(q, sizeof q, "%s[%d]", p, e);
+      TRY(cmn_case_get_long(c, q, 1, 1000000000L, &g->edges[e]));
+    }
+  }
+  cfg->nforces = n;
+  return 0;
+}
+
+int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
+  memset(cfg, 0, sizeof *cfg);
+  /* fluid */
+  TRY(cmn_case_get_positive(c, "fluid.rho0", &cfg->rho0));
+  TRY(cmn_case_get_positive(c, "fluid.c0", &cfg->c0));
+  TRY(cmn_case_opt_double(c, "fluid.xi", 7.0, 1.0, 100.0, &cfg->xi));
+  TRY(cmn_case_opt_double(c, "fluid.nu", 0.0, 0.0, INFINITY, &cfg->nu));
+  TRY(opt_vector(c, "gravity", dim, cfg->gravity));
+  /* initial state */
+  TRY(opt_vector(c, "initial.velocity", dim, cfg->u0));
+  static const char *const pressures[] = {"zero", "hydrostatic", NULL};
+  TRY(cmn_case_opt_choice(c, "initial.pressure", pressures, 0, &cfg->hydrostatic));
+  cfg->free_surface = NAN;
+  if (cmn_case_has(c, "initial.free_surface"))
+    TRY(cmn_case_get_double(c, "initial.free_surface", -INFINITY, INFINITY, &cfg->free_surface));
+  if (cfg->hydrostatic) {
+    double g2 = cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
+                cfg->gravity[2] * cfg->gravity[2];
+    if (!(g2 > 0.0))
+      return cmn_case_fail(c, "initial.pressure", "hydrostatic pressure needs a non-zero gravity");
+  }
+  /* numerics */
+  TRY(cmn_case_opt_double(c, "numerics.gradient_k", 1.0, 0.0, 2.0, &cfg->grad_k));
+  static const char *const diffusions[] = {"none", "ferrari", "brezzi", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.diffusion", diffusions, SPH_DIFFUSION_FERRARI,
+                          &cfg->diffusion));
+  static const char *const speeds[] = {"max", "eta", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.diffusion_speed", speeds, SPH_DSPEED_MAX,
+                          &cfg->diffusion_speed));
+  TRY(cmn_case_opt_positive(c, "numerics.eta", 20.0, &cfg->eta));
+  TRY(cmn_case_opt_double(c, "numerics.brezzi_lambda", 1.0, 0.0, INFINITY, &cfg->brezzi_lambda));
+  TRY(cmn_case_opt_bool(c, "numerics.gravity_correction", 1, &cfg->gravity_correction));
+  static const char *const hydros[] = {"none", "full", "tangential", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
+                          &cfg->vertex_hydro));
+  TRY(cmn_case_opt_double(c, "numerics.cfl", 0.3, 1e-6, 1.0, &cfg->cfl));
+  TRY(cmn_case_opt_double(c, "numerics.viscous_factor", 0.125, 1e-6, 1.0, &cfg->viscous_factor));
+  TRY(cmn_case_opt_double(c, "numerics.force_factor", 0.25, 1e-6, 1.0, &cfg->force_factor));
+  TRY(cmn_case_opt_double(c, "numerics.gamma_factor", 0.05, 1e-6, 1.0, &cfg->gamma_factor));
+  TRY(cmn_case_opt_double(c, "numerics.skin", 0.2, 0.01, 1.0, &cfg->skin_over_h));
+  cfg->dt_max = INFINITY;
+  if (cmn_case_has(c, "numerics.dt_max"))
+    TRY(cmn_case_get_positive(c, "numerics.dt_max", &cfg->dt_max));
+  const double band[2] = {0.5, 1.5};
+  TRY(cmn_case_opt_doubles(c, "numerics.density_band", 2, band, cfg->density_band));
+  if (!(cfg->density_band[0] > 0.0 && cfg->density_band[0] < 1.0 && cfg->density_band[1] > 1.0))
+    return cmn_case_fail(c, "numerics.density_band", "expected [lo, hi] with 0 < lo < 1 < hi");
+  /* time and output */
+  TRY(cmn_case_get_positive(c, "time.end", &cfg->t_end));
+  TRY(cmn_case_opt_positive(c, "time.output_interval", cfg->t_end / 100.0,
+                            &cfg->output_interval));
+  TRY(cmn_case_opt_long(c, "time.diagnostics_every", 1, 1, 1000000000L, &cfg->diagnostics_every));
+  TRY(cmn_case_opt_long(c, "time.checkpoint_steps", 0, 0, 1000000000L, &cfg->checkpoint_steps));
+  TRY(cmn_case_opt_double(c, "time.checkpoint_minutes", 0.0, 0.0, INFINITY,
+                          &cfg->checkpoint_minutes));
+  /* probes and forces */
+  TRY(read_points(c, "probes.pressure", dim, cfg->probes, &cfg->nprobes));
+  TRY(read_points(c, "probes.gauges", dim, cfg->gauges, &cfg->ngauges));
+  TRY(read_forces(c, cfg));
+  return 0;
+}

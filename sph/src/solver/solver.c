@@ -1,0 +1,377 @@
+/*
+ * The weakly-compressible USAW solver (docs/sph-solver.md): set-up, Tait EOS (riemann/), vertex
+ * and segment values M(16–17), momentum M(14) with Grad^{γ,k} M(37) and Lap^γ J(8) with the wall
+ * shear stress M(19–20), the volume-diffusion rate of M(84) (Ferrari M(49–50), η M(48), gravity
+ * correction M(81), or the Brezzi-type term of J §II.C), the time-step limits, and the
+ * predictor–corrector with the time-summation continuity M(13), J(10), M(84).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "operators/pair.h"
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+
+static double *grow(double *p, size_t cap) { return cmn_realloc(p, (cap ? cap : 1) * sizeof *p); }
+
+void sph_solver_sync(struct sph_solver *sv) {
+  for (int k = 0; k < SPH_NKINDS; k++) {
+    size_t n = sv->sys.part[k].n;
+    if (n <= sv->cap[k] && sv->p[k]) continue;
+    size_t cap = n + n / 4 + 8;
+    sv->p[k] = grow(sv->p[k], cap);
+    sv->mu[k] = grow(sv->mu[k], cap);
+    if (k == SPH_KIND_FLUID) {
+      for (int c = 0; c < 3; c++) {
+        sv->acc[c] = grow(sv->acc[c], cap);
+        sv->x0[c] = grow(sv->x0[c], cap);
+        sv->v0[c] = grow(sv->v0[c], cap);
+      }
+      sv->rho_n = grow(sv->rho_n, cap);
+      sv->gamma_n = grow(sv->gamma_n, cap);
+      sv->diff = grow(sv->diff, cap);
+    }
+    sv->cap[k] = cap;
+  }
+  size_t np = sv->nb.cap_pairs;
+  if (np > sv->cap_flux || !sv->wall_flux[0]) {
+    for (int c = 0; c < 3; c++) sv->wall_flux[c] = grow(sv->wall_flux[c], np);
+    sv->cap_flux = np;
+  }
+}
+
+static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
+
+/* Lists, γ and ∇γ_as at the current positions. */
+static void neighbours(struct sph_solver *sv) {
+  sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
+  sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+  sph_solver_sync(sv);
+}
+
+static void refresh_gamma(struct sph_solver *sv) { sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel); }
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* ------------------------------------------------------------------------------------------- */
+
+void sph_solver_boundary_values(struct sph_solver *sv) {
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
+  const struct rmn_eos *eos = &sv->eos;
+  const double nu = sv->cfg.nu, *g = sv->cfg.gravity;
+  for (size_t a = 0; a < f->n; a++) {
+    sv->p[SPH_KIND_FLUID][a] = rmn_eos_pressure(eos, f->rho[a]);
+    sv->mu[SPH_KIND_FLUID][a] = nu * f->rho[a];
+  }
+  /* Shepard M(16–17) with the hydrostatic correction p_b + ρ_b g·(r_v − r_b) (full) or its part
+   * tangential to the wall, M(83). */
+  const struct sph_nlist *nl = &sv->nb.vf;
+  const int hydro = sv->cfg.vertex_hydro;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t iv = 0; iv < v->n; iv++) {
+    double alpha = 0.0, sum = 0.0;
+    const double nv[3] = {v->normal[0][iv], v->normal[1][iv], v->normal[2][iv]};
+    for (size_t q = nl->offset[iv]; q < nl->offset[iv + 1]; q++) {
+      size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (!sph_pair_eval(&sv->kernel, s, v, iv, f, b, &pr)) continue;
+      double vw = f->mass[b] / f->rho[b] * pr.w;
+      double pb = sv->p[SPH_KIND_FLUID][b];
+      if (hydro != SPH_VHYDRO_NONE) {
+        double r[3] = {pr.r[0], pr.r[1], pr.r[2]}; /* r_v − r_b */
+        if (hydro == SPH_VHYDRO_TANGENTIAL) {
+          double rn = dot3(r, nv);
+          for (int c = 0; c < 3; c++) r[c] -= rn * nv[c];
+        }
+        pb += f->rho[b] * dot3(g, r);
+      }
+      alpha += vw;
+      sum += vw * pb;
+    }
+    double pv = alpha > 0.0 ? sum / alpha : 0.0;
+    double pmin = rmn_eos_min_pressure(eos);
+    if (!(pv > 0.999 * pmin)) pv = 0.999 * pmin; /* keep ρ(p) defined */
+    sv->p[SPH_KIND_VERTEX][iv] = pv;
+    v->rho[iv] = rmn_eos_density(eos, pv);
+    sv->mu[SPH_KIND_VERTEX][iv] = nu * v->rho[iv];
+  }
+  const int dim = s->dim;
+  for (size_t j = 0; j < sg->n; j++) {
+    double rho = 0.0, p = 0.0, vel[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < dim; k++) {
+      size_t iv = sg->vertex[k][j];
+      rho += v->rho[iv];
+      p += sv->p[SPH_KIND_VERTEX][iv];
+      for (int c = 0; c < 3; c++) vel[c] += v->v[c][iv];
+    }
+    sg->rho[j] = rho / dim;
+    sv->p[SPH_KIND_SEGMENT][j] = p / dim;
+    sv->mu[SPH_KIND_SEGMENT][j] = nu * sg->rho[j];
+    for (int c = 0; c < 3; c++) sg->v[c][j] = vel[c] / dim;
+  }
+}
+
+/* ------------------------------------------------------------------------------------------- */
+
+/* Volume-diffusion rate D_a = d(γ_a ρ_a)/dt of M(84) (Ferrari/η) or the Brezzi-type term. */
+static double diffusion_rate(const struct sph_solver *sv, size_t a) {
+  const struct sph_config *cfg = &sv->cfg;
+  if (cfg->diffusion == SPH_DIFFUSION_NONE) return 0.0;
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
+  const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
+  const double rho_ref = cfg->rho0, c0 = cfg->c0;
+  const double rho_a = f->rho[a];
+  const double ca = rmn_eos_sound_speed(&sv->eos, rho_a);
+  const double K = c0 * s->dr / cfg->eta;
+  double sum = 0.0;
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    size_t b = nl->index[q];
+    struct sph_pair pr;
+    if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr) || pr.dist == 0.0) continue;
+    const double g_r = gcorr * dot3(cfg->gravity, pr.r); /* g·r_ab */
+    if (cfg->diffusion == SPH_DIFFUSION_FERRARI) {
+      /* ϱ_ab = ρ_a − ρ_b − ρ0/c0² g·r_ab, M(81) (with g = −g e_z: the paper's form). */
+      const double varrho = rho_a - f->rho[b] - rho_ref / (c0 * c0) * g_r;
+      double cab_over_r; /* c_ab / r_ab */
+      if (cfg->diffusion_speed == SPH_DSPEED_MAX) {
+        const double cb = rmn_eos_sound_speed(&sv->eos, f->rho[b]);
+        cab_over_r = (ca > cb ? ca : cb) / pr.dist; /* M(50) */
+      } else {
+        cab_over_r = 2.0 * K / (pr.dist * pr.dist); /* r_ab c_ab = 2K, M(52), M(48) */
+      }
+      /* m_b c_ab (r_ab/r_ab)·∇w_ab ϱ_ab/ρ_b = m_b c_ab/r_ab · w'(r)/r · r² ϱ_ab/ρ_b */
+      sum += f->mass[b] * cab_over_r * pr.dwdr_over_r * pr.dist * pr.dist * varrho / f->rho[b];
+    } else {
+      /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
+      const double pab = sv->p[SPH_KIND_FLUID][a] - sv->p[SPH_KIND_FLUID][b] - rho_ref * g_r;
+      sum += f->mass[b] / f->rho[b] * 2.0 * pab * pr.dwdr_over_r;
+    }
+  }
+  /* The Brezzi-type term takes its time scale Δt in continuity(). */
+  if (cfg->diffusion == SPH_DIFFUSION_BREZZI) sum *= cfg->brezzi_lambda;
+  return sum;
+}
+
+void sph_solver_forces(struct sph_solver *sv) {
+  struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *sg = &s->part[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nls = &sv->nb.list[SPH_KIND_SEGMENT];
+  const double zmin = 0.5 * s->dr;
+  /* Wall shear stress per F–S pair, M(19–20): (μ_s + μ_a) (v_a − v_s)_t / z. */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t a = 0; a < f->n; a++) {
+    for (size_t q = nls->offset[a]; q < nls->offset[a + 1]; q++) {
+      size_t j = nls->index[q];
+      const double n[3] = {sg->normal[0][j], sg->normal[1][j], sg->normal[2][j]};
+      double dv[3], z = sv->nb.dist_as[q];
+      for (int c = 0; c < 3; c++) dv[c] = f->v[c][a] - sg->v[c][j];
+      const double dn = dot3(dv, n);
+      const double coef = (sv->mu[SPH_KIND_SEGMENT][j] + sv->mu[SPH_KIND_FLUID][a]) /
+                          (z > zmin ? z : zmin);
+      for (int c = 0; c < 3; c++) sv->wall_flux[c][q] = coef * (dv[c] - dn * n[c]);
+    }
+  }
+  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const double *pk[SPH_NKINDS] = {sv->p[0], sv->p[1], sv->p[2]};
+  const double *muk[SPH_NKINDS] = {sv->mu[0], sv->mu[1], sv->mu[2]};
+  const double *vel[SPH_NKINDS][3];
+  for (int k = 0; k < SPH_NKINDS; k++)
+    for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
+  const double *flux[3] = {sv->wall_flux[0], sv->wall_flux[1], sv->wall_flux[2]};
+  const int viscous = sv->cfg.nu > 0.0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t a = 0; a < f->n; a++) {
+    double gp[3], lap[3] = {0.0, 0.0, 0.0};
+    sph_op_grad(&op, sv->cfg.grad_k, pk, a, gp);
+    if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
+    const double inv_rho = 1.0 / f->rho[a];
+    for (int c = 0; c < 3; c++)
+      sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];
+    sv->diff[a] = diffusion_rate(sv, a);
+  }
+}
+
+/* ------------------------------------------------------------------------------------------- */
+
+double sph_solver_timestep(const struct sph_solver *sv) {
+  const struct sph_config *cfg = &sv->cfg;
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double h = sv->sys.h;
+  double smax = 0.0, vmax = 0.0, amax = 0.0, gmax = 0.0;
+  for (size_t a = 0; a < f->n; a++) {
+    double v2 = 0.0, a2 = 0.0, vg = 0.0;
+    for (int c = 0; c < 3; c++) {
+      v2 += f->v[c][a] * f->v[c][a];
+      a2 += sv->acc[c][a] * sv->acc[c][a];
+      vg += f->v[c][a] * f->grad_gamma[c][a];
+    }
+    double speed = sqrt(v2);
+    double sig = rmn_eos_sound_speed(&sv->eos, f->rho[a]) + speed;
+    smax = fmax(smax, sig);
+    vmax = fmax(vmax, speed);
+    amax = fmax(amax, sqrt(a2));
+    gmax = fmax(gmax, fabs(vg));
+  }
+  double dt = cfg->dt_max;
+  if (smax > 0.0) dt = fmin(dt, cfg->cfl * h / smax);
+  if (cfg->nu > 0.0) dt = fmin(dt, cfg->viscous_factor * h * h / cfg->nu);
+  if (amax > 0.0) dt = fmin(dt, cfg->force_factor * sqrt(h / amax));
+  if (gmax > 0.0) dt = fmin(dt, cfg->gamma_factor / gmax);
+  /* Neighbour skin: |v| dt + 2|a| dt² ≤ skin/2 (the corrector displacement, with margin). */
+  const double half = 0.5 * cfg->skin_over_h * h, a2 = 2.0 * amax;
+  double dt_skin = a2 > 0.0 ? (-vmax + sqrt(vmax * vmax + 4.0 * a2 * half)) / (2.0 * a2)
+                            : (vmax > 0.0 ? half / vmax : INFINITY);
+  return fmin(dt, dt_skin);
+}
+
+/* ------------------------------------------------------------------------------------------- */
+
+/* γ_a ρ_a = γ^n ρ^n + Σ_{b∈P} m_b (w_ab − w_ab^n) + fac · D, J(10), M(84): positions now vs x0. */
+static void continuity(struct sph_solver *sv, double fac) {
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const struct sph_kernel *k = &sv->kernel;
+  const double support = sph_kernel_support(k);
+  const double scale = fac * (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI ? sv->dt : 1.0);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t a = 0; a < f->n; a++) {
+    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    const double xa0[3] = {sv->x0[0][a], sv->x0[1][a], sv->x0[2][a]};
+    double dsum = 0.0;
+    for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+      const struct sph_parts *pb = &s->part[kind];
+      const struct sph_nlist *nl = &sv->nb.list[kind];
+      for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+        size_t b = nl->index[q];
+        double xb[3], xb0[3], d[3], d0[3];
+        for (int c = 0; c < 3; c++) {
+          xb[c] = pb->x[c][b];
+          xb0[c] = kind == SPH_KIND_FLUID ? sv->x0[c][b] : xb[c];
+        }
+        sph_domain_delta(&s->domain, xb, xa, d);
+        sph_domain_delta(&s->domain, xb0, xa0, d0);
+        const double r = sqrt(dot3(d, d)), r0 = sqrt(dot3(d0, d0));
+        if (r >= support && r0 >= support) continue;
+        dsum += pb->mass[b] * (sph_kernel_w_inline(k, r) - sph_kernel_w_inline(k, r0));
+      }
+    }
+    f->rho[a] = (sv->gamma_n[a] * sv->rho_n[a] + dsum + scale * sv->diff[a]) / f->gamma[a];
+  }
+}
+
+static void wrap(struct sph_solver *sv) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const struct sph_domain *d = &sv->sys.domain;
+  for (int c = 0; c < d->dim; c++) {
+    if (!d->periodic[c]) continue;
+    const double lo = d->lo[c], len = d->hi[c] - d->lo[c];
+    for (size_t a = 0; a < f->n; a++) {
+      double x = f->x[c][a];
+      if (x < lo) x += len;
+      else if (x >= lo + len) x -= len;
+      f->x[c][a] = x;
+    }
+  }
+}
+
+static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double lo = sv->cfg.density_band[0], hi = sv->cfg.density_band[1];
+  const double rho_ref = sv->cfg.rho0;
+  long step = sv->step + 1;
+  for (size_t a = 0; a < f->n; a++) {
+    int bad = !isfinite(f->rho[a]);
+    for (int c = 0; c < 3; c++) bad |= !isfinite(f->x[c][a]) || !isfinite(f->v[c][a]);
+    const char *what = bad ? "a non-finite value" : NULL;
+    double r = f->rho[a] / rho_ref;
+    if (!what && !(r >= lo && r <= hi)) what = "a density outside numerics.density_band";
+    if (!what && (long)a == sv->nb.escaped) what = "left the fluid domain through a wall";
+    if (what) {
+      snprintf(msg, msglen,
+               "step %ld, t = %.9g s: fluid particle id %lld (index %zu) at (%.9g, %.9g, %.9g): "
+               "%s (rho/rho0 = %.9g, v = (%.6g, %.6g, %.6g))",
+               step, sv->time, (long long)f->id[a], a, f->x[0][a], f->x[1][a], f->x[2][a], what,
+               r, f->v[0][a], f->v[1][a], f->v[2][a]);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  /* State n: lists, γ^n, boundary values, a^n, D^n, Δt. */
+  neighbours(sv);
+  sph_solver_boundary_values(sv);
+  sph_solver_forces(sv);
+  double dt = fmin(sph_solver_timestep(sv), dt_limit);
+  if (!(dt > 0.0)) {
+    snprintf(msg, msglen, "step %ld, t = %.9g s: time step %g s is not positive", sv->step + 1,
+             sv->time, dt);
+    return -1;
+  }
+  sv->dt = dt;
+  const size_t n = f->n;
+  for (int c = 0; c < 3; c++) {
+    memcpy(sv->x0[c], f->x[c], n * sizeof(double));
+    memcpy(sv->v0[c], f->v[c], n * sizeof(double));
+  }
+  memcpy(sv->rho_n, f->rho, n * sizeof(double));
+  memcpy(sv->gamma_n, f->gamma, n * sizeof(double));
+
+  /* Predictor to t + Δt/2. */
+  for (int c = 0; c < 3; c++)
+    for (size_t a = 0; a < n; a++) {
+      f->v[c][a] = sv->v0[c][a] + 0.5 * dt * sv->acc[c][a];
+      f->x[c][a] = sv->x0[c][a] + 0.5 * dt * sv->v0[c][a];
+    }
+  wrap(sv);
+  refresh_gamma(sv);
+  continuity(sv, 0.5 * dt);
+  sph_solver_boundary_values(sv);
+  sph_solver_forces(sv);
+
+  /* Corrector to t + Δt. */
+  for (int c = 0; c < 3; c++)
+    for (size_t a = 0; a < n; a++) {
+      f->v[c][a] = sv->v0[c][a] + dt * sv->acc[c][a];
+      f->x[c][a] = sv->x0[c][a] + 0.5 * dt * (sv->v0[c][a] + f->v[c][a]);
+    }
+  double dmax = 0.0;
+  for (size_t a = 0; a < n; a++) {
+    double d2 = 0.0;
+    for (int c = 0; c < 3; c++) d2 += (f->x[c][a] - sv->x0[c][a]) * (f->x[c][a] - sv->x0[c][a]);
+    dmax = fmax(dmax, d2);
+  }
+  wrap(sv);
+  refresh_gamma(sv);
+  continuity(sv, dt);
+  if (sqrt(dmax) > 0.5 * skin(sv)) {
+    snprintf(msg, msglen,
+             "step %ld, t = %.9g s: a particle moved %g m in one step, more than half the "
+             "neighbour skin (%g m)",
+             sv->step + 1, sv->time, sqrt(dmax), 0.5 * skin(sv));
+    return -1;
+  }
+  int rc = check_state(sv, msg, msglen);
+  sv->time += dt;
+  sv->step++;
+  return rc;
+}

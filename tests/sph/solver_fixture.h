@@ -1,0 +1,93 @@
+/* Small systems for the solver tests: a 2D fluid lattice, with or without the walls of a channel
+ * periodic in x, and a configuration with the documented defaults. Header-only (each test is one
+ * program). */
+#ifndef SABRE_TESTS_SPH_SOLVER_FIXTURE_H
+#define SABRE_TESTS_SPH_SOLVER_FIXTURE_H
+
+#include <math.h>
+#include <string.h>
+
+#include "geometry/geometry.h"
+#include "sabre/sph.h"
+#include "sabre/sph_solver.h"
+
+/* The defaults of docs/sph-case-file.md (what sph_config_read() gives for a minimal case). */
+static inline void fixture_config(struct sph_config *cfg) {
+  memset(cfg, 0, sizeof *cfg);
+  cfg->rho0 = 1000.0;
+  cfg->c0 = 20.0;
+  cfg->xi = 7.0;
+  cfg->nu = 0.0;
+  cfg->free_surface = NAN;
+  cfg->grad_k = 1.0;
+  cfg->diffusion = SPH_DIFFUSION_FERRARI;
+  cfg->diffusion_speed = SPH_DSPEED_MAX;
+  cfg->eta = 20.0;
+  cfg->brezzi_lambda = 1.0;
+  cfg->gravity_correction = 1;
+  cfg->vertex_hydro = SPH_VHYDRO_FULL;
+  cfg->cfl = 0.3;
+  cfg->viscous_factor = 0.125;
+  cfg->force_factor = 0.25;
+  cfg->gamma_factor = 0.05;
+  cfg->skin_over_h = 0.2;
+  cfg->dt_max = INFINITY;
+  cfg->density_band[0] = 0.5;
+  cfg->density_band[1] = 1.5;
+  cfg->t_end = 1.0;
+  cfg->output_interval = 0.01;
+  cfg->diagnostics_every = 1;
+}
+
+enum fixture_walls { FIX_NONE = 0, FIX_CHANNEL = 1, FIX_PERIODIC = 2 };
+
+/*
+ * nx × ny fluid particles at ((i + 1/2) dr, (j + 1/2) dr), h = h_over_dr · dr.
+ * FIX_NONE: no walls, not periodic (an open lattice). FIX_CHANNEL: walls at y = 0 and y = ny dr,
+ * periodic in x. FIX_PERIODIC: periodic in x and y, no walls.
+ */
+static inline void fixture_lattice_offset(struct sph_system *s, int nx, int ny, double dr,
+                                          double h_over_dr, enum fixture_walls walls,
+                                          double y_offset);
+static inline void fixture_lattice(struct sph_system *s, int nx, int ny, double dr, double h_over_dr,
+                                   enum fixture_walls walls) {
+  fixture_lattice_offset(s, nx, ny, dr, h_over_dr, walls, 0.5);
+}
+
+/* The same with the rows at y = (j + y_offset) dr, j = 0..ny−1 (walls at 0 and (ny − 1 + 2
+ * y_offset) dr): y_offset = 1 puts the first row one Δr from the wall. */
+static inline void fixture_lattice_offset(struct sph_system *s, int nx, int ny, double dr,
+                                          double h_over_dr, enum fixture_walls walls,
+                                          double y_offset) {
+  sph_system_init(s, 2);
+  s->dr = dr;
+  s->h = h_over_dr * dr;
+  s->domain.dim = 2;
+  s->domain.lo[0] = 0.0;
+  s->domain.lo[1] = 0.0;
+  s->domain.hi[0] = nx * dr;
+  s->domain.hi[1] = (ny - 1 + 2 * y_offset) * dr;
+  s->domain.periodic[0] = walls != FIX_NONE;
+  s->domain.periodic[1] = walls == FIX_PERIODIC;
+  if (walls == FIX_CHANNEL) {
+    struct sph_mesh m;
+    sph_mesh_init(&m, 2);
+    const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {nx * dr, s->domain.hi[1], 0.0};
+    sph_mesh_box(&m, lo, hi, dr, 0, 3u, sph_mesh_add_source(&m, "channel"));
+    sph_mesh_merge_vertices(&m, 1e-9 * dr);
+    sph_mesh_refine(&m, dr);
+    geom_mesh_identify_periodic(&m, &s->domain, 1e-6 * dr);
+    sph_system_add_walls(s, &m);
+    sph_mesh_free(&m);
+  }
+  size_t f0 = sph_system_append(s, SPH_KIND_FLUID, (size_t)nx * (size_t)ny);
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      size_t a = f0 + (size_t)j * (size_t)nx + (size_t)i;
+      f->x[0][a] = (i + 0.5) * dr;
+      f->x[1][a] = (j + y_offset) * dr;
+    }
+}
+
+#endif

@@ -359,6 +359,14 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
           axis_name[a], len, lim);
   }
   nlist_alloc(nl, query, other, pq->n);
+  const int points = query != SPH_KIND_SEGMENT && other != SPH_KIND_SEGMENT, same = query == other;
+  const double r2max = radius * radius;
+  double period[3], half[3];
+  for (int a = 0; a < 3; a++) {
+    int per = a < s->dim && s->domain.periodic[a];
+    period[a] = per ? s->domain.hi[a] - s->domain.lo[a] : 0.0;
+    half[a] = per ? 0.5 * period[a] : INFINITY;
+  }
   const size_t *startq = c->start[query], *starto = c->start[other];
   const size_t *idxq = c->index[query], *idxo = c->index[other];
   /* One pass: each thread appends the rows of the cells it handles to its own buffer (row order
@@ -411,6 +419,22 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
               if (b->n + (o1 - o0) > b->cap) {
                 b->cap = 2 * (b->n + (o1 - o0)) + 1024;
                 b->data = cmn_realloc(b->data, b->cap * sizeof *b->data);
+              }
+              if (points) {
+                /* Point pairs: the test of is_neighbour() with the same arithmetic (the minimum
+                 * image written without branches), appending without a branch. */
+                for (size_t ob = o0; ob < o1; ob++) {
+                  double d[3];
+                  for (int a = 0; a < 3; a++) {
+                    d[a] = c->xs[other][a][ob] - xa[a];
+                    d[a] = d[a] - period[a] * (d[a] > half[a]) + period[a] * (d[a] < -half[a]);
+                  }
+                  double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                  size_t j = idxo[ob];
+                  b->data[b->n] = j;
+                  b->n += (r2 < r2max) & !(same & (j == i));
+                }
+                continue;
               }
               for (size_t ob = o0; ob < o1; ob++) {
                 double xb[3] = {c->xs[other][0][ob], c->xs[other][1][ob], c->xs[other][2][ob]};

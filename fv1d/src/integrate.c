@@ -225,9 +225,9 @@ fail:
 done:
   if (stats) {
     long nrhs = 0, fails = 0;
-    if (mem) {
-      ERKStepGetNumRhsEvals(mem, &nrhs);
-      ERKStepGetNumErrTestFails(mem, &fails);
+    if (mem) { /* checked, but a failure here must not hide the run's own status */
+      if (ERKStepGetNumRhsEvals(mem, &nrhs) < 0) nrhs = -1;
+      if (ERKStepGetNumErrTestFails(mem, &fails) < 0) fails = -1;
     }
     stats->steps = step;
     stats->rhs_evals = s->arkode_rhs_calls - calls0;

@@ -140,12 +140,12 @@ static void test_neighbours_1d(void **state) {
 
 static void test_neighbours_2d(void **state) {
   (void)state;
-  check_dim(2, 500, 0.110);
+  check_dim(2, 400, 0.123);
 }
 
 static void test_neighbours_3d(void **state) {
   (void)state;
-  check_dim(3, 600, 0.198);
+  check_dim(3, 450, 0.218);
 }
 
 /* A wide radius spans several cells of a periodic direction: every pair is still found once. */

@@ -14,6 +14,10 @@ static inline void geom_cross(const double *a, const double *b, double *c) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/** Format a message into msg (for the functions that report bad input to their caller) and
+ *  return -1. */
+int geom_fail(char *msg, size_t msglen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /** Unit normal of an element from its vertex order (1D: normal1d). Zero for degenerate ones. */
 void geom_element_normal(int dim, const double v[3][3], double normal1d, double *n);
 /** Length (2D) or area (3D) of an element; 1 in 1D. */

@@ -403,9 +403,7 @@ static void fmt_point(int dim, const double *x, char *buf, size_t len) {
   if (dim == 3) snprintf(buf, len, "(%.9g, %.9g, %.9g)", x[0], x[1], x[2]);
 }
 
-static int fail(char *msg, size_t msglen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static int fail(char *msg, size_t msglen, const char *fmt, ...) {
+int geom_fail(char *msg, size_t msglen, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, msglen, fmt, ap);
@@ -444,12 +442,12 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
     if (!(meas > tiny) || !isfinite(meas)) {
       describe(m, e, what, sizeof what);
       fmt_point(m->dim, v[0], p0, sizeof p0);
-      return fail(msg, msglen, "%s: degenerate (zero %s) at %s", what,
-                  m->dim == 2 ? "length" : "area", p0);
+      return geom_fail(msg, msglen, "%s: degenerate (zero %s) at %s", what,
+                       m->dim == 2 ? "length" : "area", p0);
     }
     if (m->dim == 1 && fabs(fabs(m->normal[e][0]) - 1) > 1e-12) {
       describe(m, e, what, sizeof what);
-      return fail(msg, msglen, "%s: normal must be +1 or -1", what);
+      return geom_fail(msg, msglen, "%s: normal must be +1 or -1", what);
     }
   }
   if (m->dim == 2) {
@@ -462,28 +460,28 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
       if (in[b]++ == 0) continue;
       describe(m, e, what, sizeof what);
       fmt_point(2, m->vert[b], p0, sizeof p0);
-      rc = fail(msg, msglen,
-                "%s ends at %s where another segment already ends: inconsistent orientation "
-                "(each wall must run with the fluid on its left)",
-                what, p0);
+      rc = geom_fail(msg, msglen,
+                     "%s ends at %s where another segment already ends: inconsistent orientation "
+                     "(each wall must run with the fluid on its left)",
+                     what, p0);
     }
     for (size_t v = 0; v < m->nvert && rc == 0; v++) {
       if (out[v] > 1) {
         describe(m, by[v], what, sizeof what);
         fmt_point(2, m->vert[v], p0, sizeof p0);
-        rc = fail(msg, msglen,
-                  "%s starts at %s where another segment already starts: inconsistent "
-                  "orientation (each wall must run with the fluid on its left)",
-                  what, p0);
+        rc = geom_fail(msg, msglen,
+                       "%s starts at %s where another segment already starts: inconsistent "
+                       "orientation (each wall must run with the fluid on its left)",
+                       what, p0);
       } else if (out[v] + in[v] == 1) {
         size_t e = 0;
         while (m->elem[e][0] != v && m->elem[e][1] != v) e++;
         describe(m, e, what, sizeof what);
         fmt_point(2, m->vert[v], p0, sizeof p0);
-        rc = fail(msg, msglen,
-                  "%s: the wall is open at %s (no segment %s there): close it, or make the "
-                  "domain periodic across this end",
-                  what, p0, out[v] ? "ends" : "starts");
+        rc = geom_fail(msg, msglen,
+                       "%s: the wall is open at %s (no segment %s there): close it, or make the "
+                       "domain periodic across this end",
+                       what, p0, out[v] ? "ends" : "starts");
       }
     }
     free(out);
@@ -494,7 +492,7 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
   if (m->dim == 3) {
     struct edge_table t;
     edges_init(&t, 3 * m->nelem / 2 + 3);
-    /* value: number of uses a→b with a < b (low 20 bits... kept as two counters below) */
+    /* Per undirected edge: how many triangles run through it low→high index (fwd) and back. */
     size_t *fwd = cmn_calloc(3 * m->nelem + 1, sizeof *fwd);
     size_t *bwd = cmn_calloc(3 * m->nelem + 1, sizeof *bwd);
     size_t *first = cmn_malloc((3 * m->nelem + 1) * sizeof *first);
@@ -513,10 +511,10 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
           describe(m, first[id], other, sizeof other);
           fmt_point(3, m->vert[u], p0, sizeof p0);
           fmt_point(3, m->vert[v], p1, sizeof p1);
-          rc = fail(msg, msglen,
-                    "%s runs through its edge %s-%s in the same direction as %s: "
-                    "inconsistent orientation (normals must all point into the fluid)",
-                    what, p0, p1, other);
+          rc = geom_fail(msg, msglen,
+                         "%s runs through its edge %s-%s in the same direction as %s: "
+                         "inconsistent orientation (normals must all point into the fluid)",
+                         what, p0, p1, other);
         }
       }
     for (size_t i = 0; i < t.cap && rc == 0; i++) {
@@ -526,10 +524,10 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
       describe(m, first[id], what, sizeof what);
       fmt_point(3, m->vert[t.a[i]], p0, sizeof p0);
       fmt_point(3, m->vert[t.b[i]], p1, sizeof p1);
-      rc = fail(msg, msglen,
-                "%s: its edge %s-%s belongs to no other triangle: the surface is open (close "
-                "it, or make the domain periodic across it)",
-                what, p0, p1);
+      rc = geom_fail(msg, msglen,
+                     "%s: its edge %s-%s belongs to no other triangle: the surface is open (close "
+                     "it, or make the domain periodic across it)",
+                     what, p0, p1);
     }
     free(fwd);
     free(bwd);

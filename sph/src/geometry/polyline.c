@@ -6,11 +6,11 @@
  *   1.0 0.0 open              "open": the edge from this point to the next is an open boundary
  */
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geometry/geometry.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
 
@@ -22,29 +22,21 @@ struct polyline {
   uint8_t *open;
 };
 
-static int report(char *msg, size_t msglen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static int report(char *msg, size_t msglen, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(msg, msglen, fmt, ap);
-  va_end(ap);
-  return -1;
-}
-
 /* Add the finished polyline to the mesh, or complain that it is too short. */
 static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int fluid_inside,
                  int source, char *msg, size_t msglen) {
   if (pl->line == 0) return 0;
   size_t need = pl->closed ? 3 : 2;
   if (pl->n < need)
-    return report(msg, msglen, "%s:%ld: %s with %zu point%s: it needs at least %zu", path, pl->line,
-                  pl->closed ? "polygon" : "polyline", pl->n, pl->n == 1 ? "" : "s", need);
+    return geom_fail(msg, msglen, "%s:%ld: %s with %zu point%s: it needs at least %zu", path,
+                     pl->line, pl->closed ? "polygon" : "polyline", pl->n, pl->n == 1 ? "" : "s",
+                     need);
   if (!pl->closed && pl->open[pl->n - 1])
-    return report(msg, msglen,
-                  "%s:%ld: the last point of an open polyline starts no edge: 'open' not allowed "
-                  "there",
-                  path, pl->line);
+    return geom_fail(
+        msg, msglen,
+        "%s:%ld: the last point of an open polyline starts no edge: 'open' not allowed "
+        "there",
+        path, pl->line);
   sph_mesh_polygon(m, pl->n, (const double(*)[2])pl->pts, pl->closed, fluid_inside, pl->open,
                    source);
   pl->n = 0;
@@ -54,9 +46,9 @@ static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int 
 
 int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_inside, char *msg,
                            size_t msglen) {
-  if (m->dim != 2) return report(msg, msglen, "%s: polyline files describe 2D walls", path);
+  if (m->dim != 2) return geom_fail(msg, msglen, "%s: polyline files describe 2D walls", path);
   FILE *f = fopen(path, "r");
-  if (!f) return report(msg, msglen, "%s: cannot open: %s", path, strerror(errno));
+  if (!f) return geom_fail(msg, msglen, "%s: cannot open: %s", path, strerror(errno));
   int source = sph_mesh_add_source(m, path);
   struct polyline pl = {0};
   char buf[1024];
@@ -65,8 +57,8 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
   while (rc == 0 && fgets(buf, sizeof buf, f)) {
     line++;
     if (!strchr(buf, '\n') && !feof(f)) {
-      rc = report(msg, msglen, "%s:%ld: line longer than %zu characters", path, line,
-                  sizeof buf - 2);
+      rc = geom_fail(msg, msglen, "%s:%ld: line longer than %zu characters", path, line,
+                     sizeof buf - 2);
       break;
     }
     char *hash = strchr(buf, '#');
@@ -91,14 +83,15 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
     int ok = (nt == 2 || (nt == 3 && strcmp(tok[2], "open") == 0)) &&
              cmn_parse_double(tok[0], &x) == 0 && cmn_parse_double(tok[1], &y) == 0;
     if (!ok) {
-      rc = report(msg, msglen,
-                  "%s:%ld: expected 'polygon', 'polyline', or a point 'x y' optionally followed "
-                  "by 'open'",
-                  path, line);
+      rc = geom_fail(msg, msglen,
+                     "%s:%ld: expected 'polygon', 'polyline', or a point 'x y' optionally followed "
+                     "by 'open'",
+                     path, line);
       break;
     }
     if (pl.line == 0) {
-      rc = report(msg, msglen, "%s:%ld: point before any 'polygon' or 'polyline' line", path, line);
+      rc = geom_fail(msg, msglen, "%s:%ld: point before any 'polygon' or 'polyline' line", path,
+                     line);
       break;
     }
     if (pl.n == pl.cap) {
@@ -110,10 +103,10 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
     pl.pts[pl.n][1] = y;
     pl.open[pl.n++] = nt == 3;
   }
-  if (rc == 0 && ferror(f)) rc = report(msg, msglen, "%s: read error", path);
+  if (rc == 0 && ferror(f)) rc = geom_fail(msg, msglen, "%s: read error", path);
   if (rc == 0) rc = flush(m, &pl, path, fluid_inside, source, msg, msglen);
   if (rc == 0 && count == 0)
-    rc = report(msg, msglen, "%s:%ld: no 'polygon' or 'polyline' in the file", path, line);
+    rc = geom_fail(msg, msglen, "%s:%ld: no 'polygon' or 'polyline' in the file", path, line);
   free(pl.pts);
   free(pl.open);
   fclose(f);

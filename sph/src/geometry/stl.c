@@ -6,7 +6,6 @@
  * facets'; with the fluid outside (an obstacle) they are the facets'. */
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,16 +14,6 @@
 #include "geometry/geometry.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
-
-static int report(char *msg, size_t msglen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static int report(char *msg, size_t msglen, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(msg, msglen, fmt, ap);
-  va_end(ap);
-  return -1;
-}
 
 /* Add one facet read from the file; checks the facet normal against the vertex order. */
 static int add_facet(struct sph_mesh *m, const double fn[3], double v[3][3], double scale,
@@ -39,10 +28,10 @@ static int add_facet(struct sph_mesh *m, const double fn[3], double v[3][3], dou
   double nf = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
   double nr = sqrt(rh[0] * rh[0] + rh[1] * rh[1] + rh[2] * rh[2]);
   if (nf > 0 && nr > 0 && (fn[0] * rh[0] + fn[1] * rh[1] + fn[2] * rh[2]) < -0.5 * nf * nr)
-    return report(msg, msglen,
-                  "%s: triangle %ld: its facet normal (%g, %g, %g) points against the vertex "
-                  "order (right-hand rule: (%g, %g, %g)): inconsistent orientation",
-                  where, tri, fn[0], fn[1], fn[2], rh[0] / nr, rh[1] / nr, rh[2] / nr);
+    return geom_fail(msg, msglen,
+                     "%s: triangle %ld: its facet normal (%g, %g, %g) points against the vertex "
+                     "order (right-hand rule: (%g, %g, %g)): inconsistent orientation",
+                     where, tri, fn[0], fn[1], fn[2], rh[0] / nr, rh[1] / nr, rh[2] / nr);
   size_t idx[3];
   for (int k = 0; k < 3; k++) {
     double x[3] = {scale * v[k][0], scale * v[k][1], scale * v[k][2]};
@@ -85,16 +74,16 @@ static void skip_line(struct lexer *lx) {
 
 static int expect(struct lexer *lx, const char *word, const char *path, char *msg, size_t msglen) {
   if (next_token(lx) && strcmp(lx->tok, word) == 0) return 0;
-  return report(msg, msglen, "%s:%ld: expected '%s', got '%s'", path, lx->line, word,
-                lx->p < lx->end || lx->tok[0] ? lx->tok : "end of file");
+  return geom_fail(msg, msglen, "%s:%ld: expected '%s', got '%s'", path, lx->line, word,
+                   lx->p < lx->end || lx->tok[0] ? lx->tok : "end of file");
 }
 
 static int read_numbers(struct lexer *lx, double *x, const char *what, const char *path, char *msg,
                         size_t msglen) {
   for (int a = 0; a < 3; a++)
     if (!next_token(lx) || cmn_parse_double(lx->tok, &x[a]) != 0)
-      return report(msg, msglen, "%s:%ld: expected three numbers after '%s', got '%s'", path,
-                    lx->line, what, lx->tok[0] ? lx->tok : "end of file");
+      return geom_fail(msg, msglen, "%s:%ld: expected three numbers after '%s', got '%s'", path,
+                       lx->line, what, lx->tok[0] ? lx->tok : "end of file");
   return 0;
 }
 
@@ -105,20 +94,20 @@ static int read_ascii(struct sph_mesh *m, const char *buf, size_t len, const cha
   int solids = 0;
   while (next_token(&lx)) {
     if (strcmp(lx.tok, "solid") != 0)
-      return report(msg, msglen, "%s:%ld: expected 'solid', got '%s'", path, lx.line, lx.tok);
+      return geom_fail(msg, msglen, "%s:%ld: expected 'solid', got '%s'", path, lx.line, lx.tok);
     skip_line(&lx); /* the solid's name */
     solids++;
     for (;;) {
       if (!next_token(&lx))
-        return report(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got end of file", path,
-                      lx.line);
+        return geom_fail(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got end of file",
+                         path, lx.line);
       if (strcmp(lx.tok, "endsolid") == 0) {
         skip_line(&lx);
         break;
       }
       if (strcmp(lx.tok, "facet") != 0)
-        return report(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got '%s'", path,
-                      lx.line, lx.tok);
+        return geom_fail(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got '%s'", path,
+                         lx.line, lx.tok);
       double fn[3], v[3][3];
       long line = lx.line;
       if (expect(&lx, "normal", path, msg, msglen) ||
@@ -136,7 +125,7 @@ static int read_ascii(struct sph_mesh *m, const char *buf, size_t len, const cha
       if (add_facet(m, fn, v, scale, fluid_inside, source, ++tri, where, msg, msglen)) return -1;
     }
   }
-  if (solids == 0 || tri == 0) return report(msg, msglen, "%s: no facets", path);
+  if (solids == 0 || tri == 0) return geom_fail(msg, msglen, "%s: no facets", path);
   return 0;
 }
 
@@ -155,9 +144,9 @@ static void put_f32(unsigned char *p, float f) {
 
 int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fluid_inside,
                       char *msg, size_t msglen) {
-  if (m->dim != 3) return report(msg, msglen, "%s: STL files describe 3D walls", path);
+  if (m->dim != 3) return geom_fail(msg, msglen, "%s: STL files describe 3D walls", path);
   FILE *f = fopen(path, "rb");
-  if (!f) return report(msg, msglen, "%s: cannot open: %s", path, strerror(errno));
+  if (!f) return geom_fail(msg, msglen, "%s: cannot open: %s", path, strerror(errno));
   size_t cap = 1 << 16, len = 0;
   unsigned char *buf = cmn_malloc(cap);
   for (size_t got; (got = fread(buf + len, 1, cap - len, f)) > 0;) {
@@ -168,7 +157,7 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
   fclose(f);
   if (err) {
     free(buf);
-    return report(msg, msglen, "%s: read error", path);
+    return geom_fail(msg, msglen, "%s: read error", path);
   }
   int source = sph_mesh_add_source(m, path);
   size_t v0 = m->nvert;
@@ -178,7 +167,7 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
     count = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 | (uint32_t)buf[82] << 16 |
             (uint32_t)buf[83] << 24;
   if (len >= 84 && len == 84 + 50 * (size_t)count) {
-    if (count == 0) rc = report(msg, msglen, "%s: binary STL with no triangles", path);
+    if (count == 0) rc = geom_fail(msg, msglen, "%s: binary STL with no triangles", path);
     for (uint32_t t = 0; t < count && rc == 0; t++) {
       const unsigned char *r = buf + 84 + 50 * (size_t)t;
       double fn[3], v[3][3];
@@ -187,8 +176,8 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
         for (int a = 0; a < 3; a++) v[k][a] = get_f32(r + 12 + 12 * k + 4 * a);
       for (int k = 0; k < 3 && rc == 0; k++)
         if (!isfinite(v[k][0]) || !isfinite(v[k][1]) || !isfinite(v[k][2]))
-          rc = report(msg, msglen, "%s: triangle %lu: non-finite vertex coordinate", path,
-                      (unsigned long)t + 1);
+          rc = geom_fail(msg, msglen, "%s: triangle %lu: non-finite vertex coordinate", path,
+                         (unsigned long)t + 1);
       if (rc == 0)
         rc = add_facet(m, fn, v, scale, fluid_inside, source, (long)t + 1, path, msg, msglen);
     }
@@ -198,15 +187,15 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
     if (len - i >= 5 && memcmp(buf + i, "solid", 5) == 0)
       rc = read_ascii(m, (const char *)buf, len, path, scale, fluid_inside, source, msg, msglen);
     else if (len >= 84)
-      rc = report(msg, msglen,
-                  "%s: not an STL file: neither ASCII (starting with 'solid') nor binary "
-                  "(84 + 50 n bytes for n triangles; this file has %zu bytes and says n = %lu)",
-                  path, len, (unsigned long)count);
+      rc = geom_fail(msg, msglen,
+                     "%s: not an STL file: neither ASCII (starting with 'solid') nor binary "
+                     "(84 + 50 n bytes for n triangles; this file has %zu bytes and says n = %lu)",
+                     path, len, (unsigned long)count);
     else
-      rc = report(msg, msglen,
-                  "%s: not an STL file: neither ASCII (starting with 'solid') nor binary "
-                  "(at least 84 bytes; this file has %zu)",
-                  path, len);
+      rc = geom_fail(msg, msglen,
+                     "%s: not an STL file: neither ASCII (starting with 'solid') nor binary "
+                     "(at least 84 bytes; this file has %zu)",
+                     path, len);
   }
   free(buf);
   if (rc == 0 && m->nvert > v0) sph_mesh_merge_vertices(m, 0.0);

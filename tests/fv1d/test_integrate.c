@@ -83,6 +83,36 @@ static void test_adaptive_and_tables(void **state) {
   assert_true(steps == steps_fixed && d < 2.0 * d_fixed + 1e-12);
 }
 
+/* The default SSP-RK3 table is third order in time: on a fixed mesh, the distance to a run with a
+ * tiny step falls as cfl³. */
+static void test_time_order(void **state) {
+  (void)state;
+  const double cfl[4] = {0.8, 0.4, 0.2, 0.0125};
+  double rho[4][100];
+  for (int k = 0; k < 4; ++k) {
+    double tout = 0.03;
+    struct fv1d_params p;
+    smooth_params(&p, &tout);
+    p.recon = FV1D_RECON_NONE; /* smooth in time: no limiter switching between runs */
+    p.cfl = cfl[k];
+    struct fv1d_solver *s = fv1d_solver_create(&p);
+    set_smooth(s);
+    struct fv1d_stats stats;
+    th_run(s, &p, tout, &stats);
+    for (long i = 0; i < 100; ++i) rho[k][i] = fv1d_solver_state(s)[2 * i];
+    fv1d_solver_destroy(s);
+  }
+  double err[3];
+  for (int k = 0; k < 3; ++k) {
+    err[k] = 0.0;
+    for (long i = 0; i < 100; ++i) err[k] += fabs(rho[k][i] - rho[3][i]) * 0.01;
+  }
+  double order1 = log(err[0] / err[1]) / log(2.0), order2 = log(err[1] / err[2]) / log(2.0);
+  printf("ssprk3 in time: differences %.3e %.3e %.3e, orders %.2f %.2f\n", err[0], err[1], err[2],
+         order1, order2);
+  assert_true(order1 > 2.7 && order2 > 2.7);
+}
+
 static void test_failures(void **state) {
   (void)state;
   /* an outflow at 0.9 c0 through the left end expands the fluid beyond vacuum (ξ = 7:
@@ -177,6 +207,7 @@ int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_adaptive_and_tables),
+      cmocka_unit_test(test_time_order),
       cmocka_unit_test(test_failures),
       cmocka_unit_test(test_outputs),
   };

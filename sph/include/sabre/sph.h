@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 struct cmn_case;
 
@@ -354,6 +355,19 @@ int sph_output_open(struct sph_output *o, const char *dir, const char *name);
 /** Write one output time (the index is the number of previous outputs). Returns 0 or -1. */
 int sph_output_write(struct sph_output *o, const struct sph_system *s, double time);
 void sph_output_close(struct sph_output *o);
+
+/* ---------------------------------------------------------------------------------------------
+ * Commands of the sabre-sph program (docs/sph-geometry.md §6). argv[0] is the command's name.
+ * They return the exit code; bad input stops the program with CMN_EXIT_INPUT and a message.
+ * ------------------------------------------------------------------------------------------- */
+
+/** `gamma --dim D --dr DR --h-over-dr K [--box LO:HI] [--stl FILE [--stl-fluid inside|outside]]
+ *  --at X[,Y[,Z]] ...`: one JSON object {"at", "gamma", "grad_gamma"} per point on stdout. */
+int sph_cmd_gamma(int argc, char **argv);
+/** `mesh CASE.yaml --output DIR [--set key=value ...]`: walls, fluid and γ as VTU files. */
+int sph_cmd_mesh(int argc, char **argv);
+/** The program's usage text. */
+void sph_cmd_usage(FILE *out);
 
 #ifdef __cplusplus
 }

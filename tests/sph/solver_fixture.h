@@ -24,7 +24,7 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->diffusion_speed = SPH_DSPEED_MAX;
   cfg->eta = 20.0;
   cfg->brezzi_lambda = 1.0;
-  cfg->gravity_correction = 1;
+  cfg->gravity_correction = 2;
   cfg->vertex_hydro = SPH_VHYDRO_FULL;
   cfg->cfl = 0.3;
   cfg->viscous_factor = 0.125;

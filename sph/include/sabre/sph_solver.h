@@ -140,7 +140,8 @@ struct sph_config {
   int diffusion_speed;   /**< enum sph_diffusion_speed */
   double eta;            /**< η of M(48) */
   double brezzi_lambda;  /**< Λ, J §II.C */
-  int gravity_correction;/**< ϱ_ab, M(81) */
+  int gravity_correction;/**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
+                              (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
   int vertex_hydro;      /**< enum sph_vertex_hydro */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h;    /**< neighbour-list skin / h */
@@ -192,6 +193,7 @@ struct sph_solver {
   int *vert_group;              /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
   double mass_ref;              /**< fluid + vertex mass at start (diagnostics) */
+  long evaluated_step;          /**< step whose start state sph_solver_evaluate() saw, or −1 */
 };
 
 /**
@@ -207,6 +209,9 @@ void sph_solver_free(struct sph_solver *sv);
 /** Grow the solver's per-particle arrays to the store's sizes (after creation of particles). */
 void sph_solver_sync(struct sph_solver *sv);
 
+/** Lists, γ, boundary values and forces of the current state (what a step starts with; also
+ *  called before wall forces and probes are written). Cheap to call twice: the step reuses it. */
+void sph_solver_evaluate(struct sph_solver *sv);
 /** EOS for every fluid particle, then Shepard vertex values M(16–17) with the hydrostatic
  *  correction, segment values as the mean of their vertices. */
 void sph_solver_boundary_values(struct sph_solver *sv);

@@ -106,7 +106,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                           &cfg->diffusion_speed));
   TRY(cmn_case_opt_positive(c, "numerics.eta", 20.0, &cfg->eta));
   TRY(cmn_case_opt_double(c, "numerics.brezzi_lambda", 1.0, 0.0, INFINITY, &cfg->brezzi_lambda));
-  TRY(cmn_case_opt_bool(c, "numerics.gravity_correction", 1, &cfg->gravity_correction));
+  static const char *const gcorr[] = {"none", "linear", "local", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.gravity_correction", gcorr, 2, &cfg->gravity_correction));
   static const char *const hydros[] = {"none", "full", "tangential", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
                           &cfg->vertex_hydro));

@@ -141,6 +141,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   vertex_masses(sv);
   sph_solver_boundary_values(sv);
 
+  sv->evaluated_step = -1;
   sv->mass_ref = 0.0;
   for (size_t a = 0; a < f->n; a++) sv->mass_ref += f->mass[a];
   for (size_t i = 0; i < v->n; i++) sv->mass_ref += v->mass[i];

@@ -141,7 +141,12 @@ static double diffusion_rate(const struct sph_solver *sv, size_t a) {
     const double g_r = gcorr * dot3(cfg->gravity, pr.r); /* g·r_ab */
     if (cfg->diffusion == SPH_DIFFUSION_FERRARI) {
       /* ϱ_ab = ρ_a − ρ_b − ρ0/c0² g·r_ab, M(81) (with g = −g e_z: the paper's form). */
-      const double varrho = rho_a - f->rho[b] - rho_ref / (c0 * c0) * g_r;
+      double slope = rho_ref / (c0 * c0); /* dρ/dp of M(81) */
+      if (cfg->gravity_correction == 2) {
+        const double rho_m = 0.5 * (rho_a + f->rho[b]), c_m = rmn_eos_sound_speed(&sv->eos, rho_m);
+        slope = rho_m / (c_m * c_m);
+      }
+      const double varrho = rho_a - f->rho[b] - slope * g_r;
       double cab_over_r; /* c_ab / r_ab */
       if (cfg->diffusion_speed == SPH_DSPEED_MAX) {
         const double cb = rmn_eos_sound_speed(&sv->eos, f->rho[b]);
@@ -314,13 +319,19 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
   return 0;
 }
 
-int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
-  struct sph_system *s = &sv->sys;
-  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  /* State n: lists, γ^n, boundary values, a^n, D^n, Δt. */
+void sph_solver_evaluate(struct sph_solver *sv) {
   neighbours(sv);
   sph_solver_boundary_values(sv);
   sph_solver_forces(sv);
+  sv->evaluated_step = sv->step;
+}
+
+int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  /* State n: lists, γ^n, boundary values, a^n, D^n, then Δt. */
+  if (sv->evaluated_step != sv->step) sph_solver_evaluate(sv);
+  sv->evaluated_step = -1;
   double dt = fmin(sph_solver_timestep(sv), dt_limit);
   if (!(dt > 0.0)) {
     snprintf(msg, msglen, "step %ld, t = %.9g s: time step %g s is not positive", sv->step + 1,

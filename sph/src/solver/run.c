@@ -1,0 +1,339 @@
+/*
+ * `sabre-sph run CASE.yaml [--set key=value]... [--output DIR] [--restart FILE] [--threads N]`:
+ * reads the case (docs/sph-case-file.md), builds the particles, integrates to time.end and writes
+ * into DIR: used_case.yaml, particles.pvd + fluid_/boundary_NNNNNN.vtu, diagnostics.csv,
+ * probes.csv, forces.csv, checkpoint.bin (every N steps or minutes, at the end, on SIGINT/SIGTERM).
+ * A failed step (NaN, particle through a wall, density out of band) writes a last output and a
+ * diagnostics row, then stops with the message (exit code 1).
+ */
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+
+static volatile sig_atomic_t stop_signal = 0;
+static void on_signal(int sig) { stop_signal = sig; }
+
+static const char usage[] =
+    "usage: sabre-sph run CASE.yaml [--set key=value]... [--output DIR] [--restart FILE]\n"
+    "                     [--threads N]\n"
+    "See docs/sph-case-file.md for the case-file keys and docs/sph-solver.md for the outputs.\n";
+
+struct run_files {
+  struct cmn_csv *diag, *probes, *forces;
+  struct sph_output vtu;
+  char *dir;
+};
+
+static char *join(const char *dir, const char *name) {
+  size_t len = strlen(dir) + strlen(name) + 2;
+  char *p = cmn_malloc(len);
+  snprintf(p, len, "%s/%s", dir, name);
+  return p;
+}
+
+/*
+ * Open a CSV; on restart keep the rows of the previous run with time ≤ t_keep (first column), so
+ * that the file reads as if the run had not been interrupted.
+ */
+static struct cmn_csv *csv_open(const char *dir, const char *name, int ncols,
+                                const char *const *names, int restart, double t_keep) {
+  char *path = join(dir, name);
+  double *rows = NULL;
+  size_t nrows = 0, cap = 0;
+  if (restart) {
+    FILE *in = fopen(path, "r");
+    char line[65536];
+    if (in && fgets(line, sizeof line, in)) {
+      while (fgets(line, sizeof line, in)) {
+        double vals[1024];
+        int n = 0;
+        char *p = line;
+        while (n < ncols && n < 1024) {
+          char *end;
+          vals[n++] = strtod(p, &end);
+          if (end == p) break;
+          p = end;
+          if (*p == ',') p++;
+        }
+        if (n != ncols || vals[0] > t_keep) continue;
+        if (nrows == cap) {
+          cap = cap ? 2 * cap : 64;
+          rows = cmn_realloc(rows, cap * (size_t)ncols * sizeof *rows);
+        }
+        memcpy(rows + nrows * (size_t)ncols, vals, (size_t)ncols * sizeof *rows);
+        nrows++;
+      }
+    }
+    if (in) fclose(in);
+  }
+  struct cmn_csv *csv = cmn_csv_open(path, ncols, names);
+  if (!csv) cmn_input_error("cannot write '%s'", path);
+  for (size_t r = 0; r < nrows; r++) cmn_csv_row(csv, rows + r * (size_t)ncols);
+  free(rows);
+  free(path);
+  return csv;
+}
+
+static void open_files(struct run_files *rf, const struct sph_solver *sv,
+                       const struct sph_run_counters *rc, int restart) {
+  const struct sph_config *cfg = &sv->cfg;
+  const int dim = sv->sys.dim;
+  static const char *const dnames[] = {"time",      "dt",        "particles", "mass",
+                                       "kinetic",   "potential", "internal",  "max_speed",
+                                       "max_drho"};
+  rf->diag = csv_open(rf->dir, "diagnostics.csv", 9, dnames, restart, sv->time);
+  int np = 1 + cfg->nprobes + cfg->ngauges;
+  char **pn = cmn_malloc((size_t)np * sizeof *pn);
+  pn[0] = "time";
+  for (int i = 0; i < cfg->nprobes; i++) {
+    pn[1 + i] = cmn_malloc(32);
+    snprintf(pn[1 + i], 32, "p%d", i);
+  }
+  for (int i = 0; i < cfg->ngauges; i++) {
+    pn[1 + cfg->nprobes + i] = cmn_malloc(32);
+    snprintf(pn[1 + cfg->nprobes + i], 32, "eta%d", i);
+  }
+  rf->probes = np > 1 ? csv_open(rf->dir, "probes.csv", np, (const char *const *)pn, restart,
+                                 sv->time)
+                      : NULL;
+  for (int i = 1; i < np; i++) free(pn[i]);
+  free(pn);
+  int nf = 1 + dim * cfg->nforces;
+  char **fn = cmn_malloc((size_t)nf * sizeof *fn);
+  fn[0] = "time";
+  for (int g = 0; g < cfg->nforces; g++)
+    for (int c = 0; c < dim; c++) {
+      fn[1 + g * dim + c] = cmn_malloc(96);
+      snprintf(fn[1 + g * dim + c], 96, "%s_f%c", cfg->forces[g].name, "xyz"[c]);
+    }
+  rf->forces = nf > 1 ? csv_open(rf->dir, "forces.csv", nf, (const char *const *)fn, restart,
+                                 sv->time)
+                      : NULL;
+  for (int i = 1; i < nf; i++) free(fn[i]);
+  free(fn);
+  if (sph_output_open(&rf->vtu, rf->dir, "particles") != 0)
+    cmn_input_error("cannot create the output directory '%s'", rf->dir);
+  if (restart && rc->outputs > 0) {
+    rf->vtu.cap = (int)rc->outputs;
+    rf->vtu.count = (int)rc->outputs;
+    rf->vtu.times = cmn_malloc((size_t)rc->outputs * sizeof(double));
+    memcpy(rf->vtu.times, rc->output_times, (size_t)rc->outputs * sizeof(double));
+  }
+}
+
+static void write_rows(struct run_files *rf, struct sph_solver *sv) {
+  const struct sph_config *cfg = &sv->cfg;
+  struct sph_diagnostics d;
+  sph_solver_diagnostics(sv, &d);
+  const double row[9] = {d.time,      d.dt,       d.count,     d.mass,    d.kinetic,
+                         d.potential, d.internal, d.max_speed, d.max_drho};
+  if (cmn_csv_row(rf->diag, row)) cmn_error("cannot write diagnostics.csv");
+  if (rf->probes) {
+    double vals[1 + 2 * SPH_MAX_PROBES];
+    vals[0] = sv->time;
+    for (int i = 0; i < cfg->nprobes; i++)
+      vals[1 + i] = sph_solver_probe_pressure(sv, cfg->probes[i]);
+    for (int i = 0; i < cfg->ngauges; i++)
+      vals[1 + cfg->nprobes + i] = sph_solver_gauge(sv, cfg->gauges[i]);
+    if (cmn_csv_row(rf->probes, vals)) cmn_error("cannot write probes.csv");
+  }
+  if (rf->forces) {
+    double f[SPH_MAX_FORCE_GROUPS][3], vals[1 + 3 * SPH_MAX_FORCE_GROUPS];
+    sph_solver_evaluate(sv); /* forces of the current state (the next step reuses this) */
+    sph_solver_wall_forces(sv, f);
+    vals[0] = sv->time;
+    for (int g = 0; g < cfg->nforces; g++)
+      for (int c = 0; c < sv->sys.dim; c++) vals[1 + g * sv->sys.dim + c] = f[g][c];
+    if (cmn_csv_row(rf->forces, vals)) cmn_error("cannot write forces.csv");
+  }
+}
+
+static void flush_files(struct run_files *rf) {
+  cmn_csv_flush(rf->diag);
+  if (rf->probes) cmn_csv_flush(rf->probes);
+  if (rf->forces) cmn_csv_flush(rf->forces);
+}
+
+static void close_files(struct run_files *rf) {
+  int bad = cmn_csv_close(rf->diag) | cmn_csv_close(rf->probes) | cmn_csv_close(rf->forces);
+  sph_output_close(&rf->vtu);
+  if (bad) cmn_error("an output CSV file could not be written completely");
+}
+
+static void write_vtu(struct run_files *rf, struct sph_run_counters *rc,
+                      const struct sph_solver *sv) {
+  if (sph_output_write(&rf->vtu, &sv->sys, sv->time) != 0)
+    cmn_error("cannot write the particle output in '%s'", rf->dir);
+  rc->output_times = cmn_realloc(rc->output_times, (size_t)(rc->outputs + 1) * sizeof(double));
+  rc->output_times[rc->outputs++] = sv->time;
+}
+
+static void checkpoint(const struct sph_solver *sv, const struct sph_run_counters *rc,
+                       const char *dir) {
+  char *path = join(dir, "checkpoint.bin");
+  if (sph_checkpoint_write(sv, rc, path) != 0) cmn_error("cannot write checkpoint '%s'", path);
+  free(path);
+}
+
+/* Wall index and element number (within its wall) of every segment, from the mesh sources. */
+static void segment_sources(const struct sph_geometry *g, struct cmn_case *c, int **wall,
+                            long **edge) {
+  const struct sph_mesh *m = &g->walls;
+  *wall = cmn_malloc((m->nelem + 1) * sizeof **wall);
+  *edge = cmn_malloc((m->nelem + 1) * sizeof **edge);
+  int nw = cmn_case_seq_length(c, "geometry.walls");
+  if (m->nsources != (nw > 0 ? nw : 0) && cmn_case_seq_length(c, "forces") > 0)
+    cmn_input_error("%s: forces: the walls could not be matched to geometry.walls entries (%d "
+                    "sources for %d walls)",
+                    cmn_case_name(c), m->nsources, nw);
+  for (size_t e = 0; e < m->nelem; e++) {
+    (*wall)[e] = m->source[e];
+    (*edge)[e] = m->source_index[e];
+  }
+}
+
+int sph_cmd_run(int argc, char **argv) {
+  const char *case_path = NULL, *output = "sph-output", *restart = NULL;
+  const char **sets = cmn_malloc((size_t)(argc + 1) * sizeof *sets);
+  int nsets = 0;
+  long threads = 0;
+  for (int k = 1; k < argc; k++) {
+    const char *a = argv[k];
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+      fputs(usage, stdout);
+      free(sets);
+      return 0;
+    }
+    if (strcmp(a, "run") == 0 && k == 1) continue;
+    if (strcmp(a, "--set") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--restart") == 0 ||
+        strcmp(a, "--threads") == 0) {
+      if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", a);
+      const char *v = argv[++k];
+      if (a[2] == 's')
+        sets[nsets++] = v;
+      else if (a[2] == 'o')
+        output = v;
+      else if (a[2] == 'r')
+        restart = v;
+      else if (cmn_parse_long(v, 1, 4096, &threads) != 0)
+        cmn_input_error("--threads: expected a whole number in [1, 4096], got '%s'", v);
+    } else if (a[0] == '-') {
+      cmn_input_error("unknown option '%s' (see --help)", a);
+    } else if (!case_path) {
+      case_path = a;
+    } else {
+      cmn_input_error("unexpected argument '%s': one case file only (see --help)", a);
+    }
+  }
+  if (!case_path) cmn_input_error("run: no case file given\n%s", usage);
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads((int)threads);
+#else
+  if (threads > 1) cmn_warning("--threads %ld: built without OpenMP, running on one thread", threads);
+#endif
+
+  char err[2048];
+  struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
+  if (!c) cmn_input_error("%s", err);
+  for (int i = 0; i < nsets; i++)
+    if (cmn_case_set(c, sets[i]) != 0)
+      cmn_input_error("--set %s: %s", sets[i], cmn_case_error(c));
+  free(sets);
+  struct sph_geometry g;
+  sph_geometry_read(&g, c);
+  struct sph_config cfg;
+  sph_config_read(&cfg, c, g.dim);
+  cmn_case_check_unused(c);
+  if (cmn_mkdir_p(output) != 0) cmn_input_error("cannot create the output directory '%s'", output);
+  char *used = join(output, "used_case.yaml");
+  if (cmn_case_write_file(c, used) != 0) cmn_input_error("cannot write '%s'", used);
+  free(used);
+
+  struct sph_system s;
+  sph_system_from_geometry(&s, &g);
+  if (s.part[SPH_KIND_FLUID].n == 0) cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
+  int *seg_wall;
+  long *seg_edge;
+  segment_sources(&g, c, &seg_wall, &seg_edge);
+  struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
+  sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
+  free(seg_wall);
+  free(seg_edge);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+
+  struct sph_run_counters rc = {0.0, 0, NULL};
+  if (restart) {
+    if (sph_checkpoint_read(sv, &rc, restart, err, sizeof err) != 0) cmn_input_error("%s", err);
+    cmn_message("restarting from %s at step %ld, t = %.9g s", restart, sv->step, sv->time);
+  }
+  struct run_files rf = {.dir = (char *)output};
+  open_files(&rf, sv, &rc, restart != NULL);
+  if (!restart) {
+    write_rows(&rf, sv);
+    write_vtu(&rf, &rc, sv);
+    rc.next_output = cfg.output_interval;
+  }
+
+  signal(SIGINT, on_signal);
+  signal(SIGTERM, on_signal);
+  struct cmn_progress prog;
+  cmn_progress_start(&prog, sv->time, cfg.t_end);
+  double last_ckpt = cmn_wall_time();
+  int status = 0;
+  const double eps = 1e-12 * cfg.t_end;
+  while (sv->time < cfg.t_end - eps) {
+    char msg[1024];
+    if (sph_solver_step(sv, cfg.t_end - sv->time, msg, sizeof msg) != 0) {
+      write_rows(&rf, sv);
+      write_vtu(&rf, &rc, sv);
+      flush_files(&rf);
+      cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
+      fprintf(stderr, "sabre-sph: run failed: %s (last state written to %s)\n", msg, output);
+      status = CMN_EXIT_FAILURE;
+      break;
+    }
+    int out = sv->time >= rc.next_output - eps || sv->time >= cfg.t_end - eps;
+    if (out || sv->step % cfg.diagnostics_every == 0) write_rows(&rf, sv);
+    if (out) {
+      write_vtu(&rf, &rc, sv);
+      while (rc.next_output <= sv->time + eps) rc.next_output += cfg.output_interval;
+      flush_files(&rf);
+    }
+    cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 0);
+    double now = cmn_wall_time();
+    if ((cfg.checkpoint_steps > 0 && sv->step % cfg.checkpoint_steps == 0) ||
+        (cfg.checkpoint_minutes > 0 && now - last_ckpt >= 60.0 * cfg.checkpoint_minutes)) {
+      flush_files(&rf);
+      checkpoint(sv, &rc, output);
+      last_ckpt = now;
+    }
+    if (stop_signal) {
+      flush_files(&rf);
+      checkpoint(sv, &rc, output);
+      cmn_message("signal %d: checkpoint written at step %ld, t = %.9g s; continue with "
+                  "--restart %s/checkpoint.bin",
+                  (int)stop_signal, sv->step, sv->time, output);
+      status = 128 + (int)stop_signal;
+      break;
+    }
+  }
+  if (status == 0) {
+    cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
+    checkpoint(sv, &rc, output);
+  }
+  close_files(&rf);
+  free(rc.output_times);
+  sph_solver_free(sv);
+  free(sv);
+  cmn_case_free(c);
+  return status;
+}

@@ -210,7 +210,8 @@ struct sph_mesh {
   double (*normal)[3]; /**< unit normal into the fluid per element */
   uint8_t *flags;      /**< SPH_FLAG_OPEN for open-boundary elements */
   int *source;         /**< index into sources[] */
-  long *source_index;  /**< triangle/segment number within its source (1-based, 0 if none) */
+  long *source_index;  /**< element number within its source (from 1; 0 if none), or minus the
+                           line of a text file where it is written */
   char **sources;      /**< e.g. "geometry.walls[1] (box)" or "tank.stl" */
   int nsources;
   size_t cap_vert, cap_elem;

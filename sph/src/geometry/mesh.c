@@ -394,7 +394,10 @@ static void describe(const struct sph_mesh *m, size_t e, char *buf, size_t len) 
   const char *src =
       m->source[e] >= 0 && m->source[e] < m->nsources ? m->sources[m->source[e]] : "walls";
   long idx = m->source_index[e] ? m->source_index[e] : (long)e + 1;
-  snprintf(buf, len, "%s: %s %ld", src, what, idx);
+  if (idx < 0)
+    snprintf(buf, len, "%s:%ld: the %s from this line", src, -idx, what);
+  else
+    snprintf(buf, len, "%s: %s %ld", src, what, idx);
 }
 
 static void fmt_point(int dim, const double *x, char *buf, size_t len) {

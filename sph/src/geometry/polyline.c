@@ -20,6 +20,7 @@ struct polyline {
   size_t n, cap;
   double (*pts)[2];
   uint8_t *open;
+  long *lines; /* line of each point */
 };
 
 /* Add the finished polyline to the mesh, or complain that it is too short. */
@@ -37,8 +38,10 @@ static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int 
         "%s:%ld: the last point of an open polyline starts no edge: 'open' not allowed "
         "there",
         path, pl->line);
+  size_t e0 = m->nelem;
   sph_mesh_polygon(m, pl->n, (const double(*)[2])pl->pts, pl->closed, fluid_inside, pl->open,
                    source);
+  for (size_t e = e0; e < m->nelem; e++) m->source_index[e] = -pl->lines[e - e0];
   pl->n = 0;
   pl->line = 0;
   return 0;
@@ -98,9 +101,11 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
       pl.cap = pl.cap ? 2 * pl.cap : 16;
       pl.pts = cmn_realloc(pl.pts, pl.cap * sizeof *pl.pts);
       pl.open = cmn_realloc(pl.open, pl.cap);
+      pl.lines = cmn_realloc(pl.lines, pl.cap * sizeof *pl.lines);
     }
     pl.pts[pl.n][0] = x;
     pl.pts[pl.n][1] = y;
+    pl.lines[pl.n] = line;
     pl.open[pl.n++] = nt == 3;
   }
   if (rc == 0 && ferror(f)) rc = geom_fail(msg, msglen, "%s: read error", path);
@@ -109,6 +114,7 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
     rc = geom_fail(msg, msglen, "%s:%ld: no 'polygon' or 'polyline' in the file", path, line);
   free(pl.pts);
   free(pl.open);
+  free(pl.lines);
   fclose(f);
   return rc;
 }

@@ -134,43 +134,39 @@ void sph_mesh_append(struct sph_mesh *a, const struct sph_mesh *b) {
 /* --------------------------------------------------------------------------------------------
  * Vertex merging: sort by quantised coordinates, merge runs of equal keys, drop unused vertices.
  * ------------------------------------------------------------------------------------------ */
-static const struct sph_mesh *sort_mesh;
-static double sort_tol;
+struct vertex_key {
+  double k[3]; /* coordinates, or rounded multiples of the tolerance */
+  size_t index;
+};
 
-static int key_cmp(size_t i, size_t j) {
-  for (int a = 0; a < 3; a++) {
-    double x = sort_mesh->vert[i][a], y = sort_mesh->vert[j][a];
-    if (sort_tol > 0) {
-      x = round(x / sort_tol);
-      y = round(y / sort_tol);
-    }
-    if (x < y) return -1;
-    if (x > y) return 1;
-  }
-  return 0;
+static int key_equal(const struct vertex_key *a, const struct vertex_key *b) {
+  return a->k[0] == b->k[0] && a->k[1] == b->k[1] && a->k[2] == b->k[2];
 }
 
-static int vert_cmp(const void *pa, const void *pb) {
-  size_t i = *(const size_t *)pa, j = *(const size_t *)pb;
-  int c = key_cmp(i, j);
-  return c ? c : (i > j) - (i < j);
+static int key_cmp(const void *pa, const void *pb) {
+  const struct vertex_key *a = pa, *b = pb;
+  for (int c = 0; c < 3; c++)
+    if (a->k[c] != b->k[c]) return a->k[c] < b->k[c] ? -1 : 1;
+  return (a->index > b->index) - (a->index < b->index);
 }
 
 void sph_mesh_merge_vertices(struct sph_mesh *m, double tol) {
   size_t n = m->nvert;
   if (n == 0) return;
-  size_t *order = cmn_malloc(n * sizeof *order), *map = cmn_malloc(n * sizeof *map);
-  for (size_t i = 0; i < n; i++) order[i] = i;
-  sort_mesh = m; /* qsort has no context argument; this is the only user */
-  sort_tol = tol;
-  qsort(order, n, sizeof *order, vert_cmp);
+  struct vertex_key *keys = cmn_malloc(n * sizeof *keys);
+  size_t *map = cmn_malloc(n * sizeof *map);
+  for (size_t i = 0; i < n; i++) {
+    for (int c = 0; c < 3; c++) keys[i].k[c] = tol > 0 ? round(m->vert[i][c] / tol) : m->vert[i][c];
+    keys[i].index = i;
+  }
+  qsort(keys, n, sizeof *keys, key_cmp);
   for (size_t r = 0; r < n;) {
     size_t s = r + 1;
-    while (s < n && key_cmp(order[r], order[s]) == 0) s++;
-    for (size_t k = r; k < s; k++) map[order[k]] = order[r];
+    while (s < n && key_equal(&keys[r], &keys[s])) s++;
+    for (size_t k = r; k < s; k++) map[keys[k].index] = keys[r].index;
     r = s;
   }
-  sort_mesh = NULL;
+  free(keys);
   /* Renumber the vertices that elements use, in their original order. */
   size_t *newidx = cmn_malloc(n * sizeof *newidx);
   for (size_t i = 0; i < n; i++) newidx[i] = SIZE_MAX;
@@ -186,7 +182,6 @@ void sph_mesh_merge_vertices(struct sph_mesh *m, double tol) {
   for (size_t e = 0; e < m->nelem; e++)
     for (int k = 0; k < m->dim; k++) m->elem[e][k] = newidx[map[m->elem[e][k]]];
   m->nvert = cnt;
-  free(order);
   free(map);
   free(newidx);
 }

@@ -43,7 +43,9 @@ extern "C" {
     "undetermined: lower the order or check the neighbour list)")                               \
   X(SPH_ROBIN_ESINGULAR, 3,                                                                     \
     "least-squares matrix of M(73) singular or ill-conditioned (reciprocal condition number "   \
-    "below rcond_min)")
+    "below rcond_min)")                                                                         \
+  X(SPH_ROBIN_ENOMEM, 4, "memory allocation failed")                                            \
+  X(SPH_ROBIN_ENOCONV, 5, "root bracketing did not converge")
 
 enum sph_robin_status {
 #define SPH_ROBIN_X_ENUM(name, value, text) name = value,

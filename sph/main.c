@@ -1,5 +1,7 @@
 /* sabre-sph: the SPH program. One binary, one subcommand per task:
  *
+ *   sabre-sph run CASE.yaml [--output DIR] [--set key=value ...] [--restart FILE] [--threads N]
+ *       run a simulation (sph_cmd_run, sph/src/solver/run.c).
  *   sabre-sph gamma --dim D --dr DR --h-over-dr K --box LO:HI [--stl FILE] --at X,Y[,Z] ...
  *       γ and ∇γ at given points for walls built from a box and/or an STL file (one JSON object
  *       per point on stdout). A public diagnostic: keep its options and output stable.
@@ -13,13 +15,15 @@
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
+#include "sabre/sph_solver.h"
 
 struct command {
   const char *name;
   int (*run)(int argc, char **argv); /* argv[0] is the command name */
 };
 
-static const struct command commands[] = {{"gamma", sph_cmd_gamma}, {"mesh", sph_cmd_mesh}};
+static const struct command commands[] = {
+    {"run", sph_cmd_run}, {"gamma", sph_cmd_gamma}, {"mesh", sph_cmd_mesh}};
 
 int main(int argc, char **argv) {
   cmn_set_program_name("sabre-sph");
@@ -34,5 +38,6 @@ int main(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 1, argv + 1);
-  cmn_input_error("unknown command '%s' (commands: gamma, mesh; see sabre-sph --help)", argv[1]);
+  cmn_input_error("unknown command '%s' (commands: run, gamma, mesh; see sabre-sph --help)",
+                  argv[1]);
 }

@@ -15,6 +15,8 @@ void sph_cmd_usage(FILE *out) {
       "usage: sabre-sph <command> [options]\n"
       "\n"
       "commands:\n"
+      "  run CASE.yaml [--output DIR] [--set key=value ...] [--restart FILE] [--threads N]\n"
+      "      Run the simulation of a case (sabre-sph run --help for details).\n"
       "  gamma --dim D --dr DR --h-over-dr K [--box LO:HI] [--stl FILE [--stl-fluid inside|"
       "outside]]\n"
       "        --at X[,Y[,Z]] [--at ...]\n"

@@ -232,8 +232,6 @@ size_t sph_mesh_add_element(struct sph_mesh *m, const size_t *v, double normal1d
 /** Merge vertices closer than tol in every coordinate (exact duplicates when tol = 0) and drop
  *  vertices no element uses. */
 void sph_mesh_merge_vertices(struct sph_mesh *m, double tol);
-/** Append all of b to a (same dimension). */
-void sph_mesh_append(struct sph_mesh *a, const struct sph_mesh *b);
 /**
  * Split the elements so that they are about dr in size: 2D segments into round(L/dr) equal parts;
  * 3D triangles by conforming longest-edge bisection until no edge exceeds 1.5 dr (a conforming
@@ -255,8 +253,6 @@ int sph_mesh_check(const struct sph_mesh *m, const struct sph_domain *dom, char 
 double sph_mesh_signed_volume(const struct sph_mesh *m, int source);
 
 /* Generators. All return elements oriented with normals into the fluid, one source each. */
-/** 1D interval [lo, hi] (fluid inside); open: bit 0 = the lo point, bit 1 = the hi point. */
-void sph_mesh_interval(struct sph_mesh *m, double lo, double hi, unsigned open, int source);
 /**
  * Closed polygon (2D) through pts[0..n-1]; fluid inside for a counter-clockwise polygon when
  * fluid_inside, else outside. Edge i (pts[i] → pts[i+1]) is open when open_edges[i] != 0

@@ -1,18 +1,12 @@
-/* Built-in wall generators: 1D interval, 2D polygons and polylines, axis-aligned boxes in any
- * dimension (channels are boxes without their end faces). Elements come out coarse in 2D (one
- * per polygon edge, split later by sph_mesh_refine) and at spacing ≈ Δr on 3D box faces. */
+/* Built-in wall generators: 2D polygons and polylines, and axis-aligned boxes in any dimension
+ * (the 1D interval is the 1D box; channels are boxes without their x faces). Elements come out
+ * coarse in 2D (one per polygon edge, split later by sph_mesh_refine) and at spacing ≈ Δr on 3D
+ * box faces. */
 #include <math.h>
 
 #include "geometry/geometry.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
-
-void sph_mesh_interval(struct sph_mesh *m, double lo, double hi, unsigned open, int source) {
-  size_t a = sph_mesh_add_vertex(m, (double[]){lo, 0, 0});
-  size_t b = sph_mesh_add_vertex(m, (double[]){hi, 0, 0});
-  sph_mesh_add_element(m, (size_t[]){a, 0, 0}, 1.0, open & 1u ? SPH_FLAG_OPEN : 0, source, 1);
-  sph_mesh_add_element(m, (size_t[]){b, 0, 0}, -1.0, open & 2u ? SPH_FLAG_OPEN : 0, source, 2);
-}
 
 void sph_mesh_polygon(struct sph_mesh *m, size_t n, const double (*pts)[2], int closed,
                       int fluid_inside, const uint8_t *open_edges, int source) {

@@ -117,20 +117,6 @@ static void copy_element(struct sph_mesh *dst, const struct sph_mesh *src, size_
   memcpy(dst->normal[f], src->normal[e], sizeof dst->normal[f]);
 }
 
-void sph_mesh_append(struct sph_mesh *a, const struct sph_mesh *b) {
-  if (a->dim != b->dim) cmn_error("mesh dimensions differ (%d, %d)", a->dim, b->dim);
-  size_t v0 = a->nvert;
-  int s0 = a->nsources;
-  for (int i = 0; i < b->nsources; i++) sph_mesh_add_source(a, b->sources[i]);
-  for (size_t i = 0; i < b->nvert; i++) sph_mesh_add_vertex(a, b->vert[i]);
-  for (size_t e = 0; e < b->nelem; e++) {
-    size_t v[3];
-    for (int k = 0; k < 3; k++) v[k] = b->elem[e][k] + v0;
-    copy_element(a, b, e, v);
-    a->source[a->nelem - 1] = b->source[e] + s0;
-  }
-}
-
 /* --------------------------------------------------------------------------------------------
  * Vertex merging: sort by quantised coordinates, merge runs of equal keys, drop unused vertices.
  * ------------------------------------------------------------------------------------------ */

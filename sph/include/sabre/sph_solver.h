@@ -152,6 +152,7 @@ struct sph_config {
   long diagnostics_every; /**< steps between rows of diagnostics.csv */
   long checkpoint_steps;  /**< 0: none */
   double checkpoint_minutes;
+  long max_steps;         /**< stop (with a checkpoint) after this many steps; 0: no limit */
   /* probes and forces */
   int nprobes, ngauges;
   double probes[SPH_MAX_PROBES][3];

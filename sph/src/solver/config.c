@@ -131,6 +131,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_long(c, "time.checkpoint_steps", 0, 0, 1000000000L, &cfg->checkpoint_steps));
   TRY(cmn_case_opt_double(c, "time.checkpoint_minutes", 0.0, 0.0, INFINITY,
                           &cfg->checkpoint_minutes));
+  TRY(cmn_case_opt_long(c, "time.max_steps", 0, 0, 1000000000000L, &cfg->max_steps));
   /* probes and forces */
   TRY(read_points(c, "probes.pressure", dim, cfg->probes, &cfg->nprobes));
   TRY(read_points(c, "probes.gauges", dim, cfg->gauges, &cfg->ngauges));

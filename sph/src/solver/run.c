@@ -212,7 +212,6 @@ int sph_cmd_run(int argc, char **argv) {
       free(sets);
       return 0;
     }
-    if (strcmp(a, "run") == 0 && k == 1) continue;
     if (strcmp(a, "--set") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--restart") == 0 ||
         strcmp(a, "--threads") == 0) {
       if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", a);
@@ -316,6 +315,14 @@ int sph_cmd_run(int argc, char **argv) {
       checkpoint(sv, &rc, output);
       last_ckpt = now;
     }
+    if (cfg.max_steps > 0 && sv->step >= cfg.max_steps) {
+      flush_files(&rf);
+      checkpoint(sv, &rc, output);
+      cmn_message("time.max_steps = %ld reached at t = %.9g s; checkpoint written", cfg.max_steps,
+                  sv->time);
+      status = -1; /* success, but no final checkpoint/progress below */
+      break;
+    }
     if (stop_signal) {
       flush_files(&rf);
       checkpoint(sv, &rc, output);
@@ -330,6 +337,7 @@ int sph_cmd_run(int argc, char **argv) {
     cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
     checkpoint(sv, &rc, output);
   }
+  if (status < 0) status = 0;
   close_files(&rf);
   free(rc.output_times);
   sph_solver_free(sv);

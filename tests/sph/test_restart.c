@@ -1,0 +1,194 @@
+/*
+ * Restart is bit-identical (same thread count): a run to time.end, and the same run stopped at
+ * time.max_steps and continued with --restart, give byte-identical diagnostics.csv, probes.csv,
+ * forces.csv and final checkpoint. Also the library level: N steps, or k steps + checkpoint write +
+ * read into a fresh solver + N − k steps, give bitwise equal particle stores.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sabre/common.h"
+#include "solver_fixture.h"
+#include "testutil.h"
+
+static const char case_text[] =
+    "geometry:\n"
+    "  dimension: 2\n"
+    "  dr: 0.025\n"
+    "  walls:\n"
+    "    - type: box\n"
+    "      lo: [0, 0]\n"
+    "      hi: [0.5, 0.4]\n"
+    "  fluid:\n"
+    "    - type: box\n"
+    "      lo: [0, 0]\n"
+    "      hi: [0.2, 0.2]\n"
+    "fluid:\n"
+    "  rho0: 1000\n"
+    "  c0: 15\n"
+    "  nu: 1.0e-4\n"
+    "gravity: [0, -9.81]\n"
+    "initial:\n"
+    "  pressure: hydrostatic\n"
+    "time:\n"
+    "  end: 0.03\n"
+    "  output_interval: 0.01\n"
+    "probes:\n"
+    "  pressure: [[0.05, 0.05]]\n"
+    "  gauges: [[0.1, 0]]\n"
+    "forces:\n"
+    "  - name: tank\n"
+    "    wall: 0\n";
+
+static char dir[256];
+
+static char *path(const char *a, const char *b) {
+  static char buf[4][512];
+  static int k = 0;
+  k = (k + 1) % 4;
+  snprintf(buf[k], sizeof buf[k], "%s/%s%s%s", dir, a, b ? "/" : "", b ? b : "");
+  return buf[k];
+}
+
+static char *slurp(const char *p, size_t *len) {
+  FILE *f = fopen(p, "rb");
+  assert_non_null(f);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *buf = malloc((size_t)n + 1);
+  assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+  fclose(f);
+  *len = (size_t)n;
+  return buf;
+}
+
+static void same_file(const char *a, const char *b) {
+  size_t la, lb;
+  char *x = slurp(a, &la), *y = slurp(b, &lb);
+  if (la != lb || memcmp(x, y, la) != 0) fail_msg("%s and %s differ", a, b);
+  free(x);
+  free(y);
+}
+
+static int run(const char *out, const char *set, const char *restart) {
+  char *argv[12];
+  int argc = 0;
+  argv[argc++] = "run";
+  argv[argc++] = path("case.yaml", NULL);
+  argv[argc++] = "--output";
+  argv[argc++] = (char *)out;
+  argv[argc++] = "--threads";
+  argv[argc++] = "1";
+  if (set) {
+    argv[argc++] = "--set";
+    argv[argc++] = (char *)set;
+  }
+  if (restart) {
+    argv[argc++] = "--restart";
+    argv[argc++] = (char *)restart;
+  }
+  argv[argc] = NULL;
+  return sph_cmd_run(argc, argv);
+}
+
+static void test_command_restart(void **state) {
+  (void)state;
+  snprintf(dir, sizeof dir, "/tmp/sabre-test-restart-XXXXXX");
+  assert_non_null(mkdtemp(dir));
+  FILE *f = fopen(path("case.yaml", NULL), "w");
+  fputs(case_text, f);
+  fclose(f);
+  char a[600], b[600];
+  snprintf(a, sizeof a, "%s", path("full", NULL));
+  snprintf(b, sizeof b, "%s", path("split", NULL));
+  assert_int_equal(run(a, NULL, NULL), 0);
+  assert_int_equal(run(b, "time.max_steps=23", NULL), 0);
+  char ck[700];
+  snprintf(ck, sizeof ck, "%s/checkpoint.bin", b);
+  assert_int_equal(run(b, NULL, ck), 0);
+  const char *files[] = {"diagnostics.csv", "probes.csv", "forces.csv", "checkpoint.bin",
+                         "particles.pvd", "fluid_000003.vtu"};
+  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    char pa[800], pb[800];
+    snprintf(pa, sizeof pa, "%s/%s", a, files[i]);
+    snprintf(pb, sizeof pb, "%s/%s", b, files[i]);
+    same_file(pa, pb);
+  }
+  /* The run really was split: a restart of the final checkpoint does nothing more. */
+  size_t n;
+  char *d = slurp(path("full", "diagnostics.csv"), &n);
+  int rows = 0;
+  for (size_t i = 0; i < n; i++) rows += d[i] == '\n';
+  free(d);
+  assert_true(rows > 30);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  assert_int_equal(system(cmd), 0);
+}
+
+static void test_library_restart(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_solver x, y;
+  for (int i = 0; i < 2; i++) {
+    struct sph_system s;
+    fixture_lattice(&s, 12, 8, 0.02, 2.0, FIX_CHANNEL);
+    struct sph_config cfg;
+    fixture_config(&cfg);
+    cfg.gravity[1] = -9.81;
+    cfg.hydrostatic = 1;
+    cfg.nu = 1e-4;
+    cfg.u0[0] = 0.3;
+    sph_solver_init(i ? &y : &x, &cfg, &s, NULL, NULL);
+    sph_system_free(&s);
+  }
+  char msg[512], ck[] = "/tmp/sabre-test-ckpt-XXXXXX";
+  int fd = mkstemp(ck);
+  assert_true(fd >= 0);
+  close(fd);
+  for (int n = 0; n < 12; n++) assert_int_equal(sph_solver_step(&x, INFINITY, msg, sizeof msg), 0);
+  for (int n = 0; n < 5; n++) assert_int_equal(sph_solver_step(&y, INFINITY, msg, sizeof msg), 0);
+  struct sph_run_counters rc = {0.5, 0, NULL};
+  assert_int_equal(sph_checkpoint_write(&y, &rc, ck), 0);
+  sph_solver_free(&y);
+  {
+    struct sph_system s;
+    fixture_lattice(&s, 12, 8, 0.02, 2.0, FIX_CHANNEL);
+    struct sph_config cfg = x.cfg;
+    sph_solver_init(&y, &cfg, &s, NULL, NULL);
+    sph_system_free(&s);
+  }
+  assert_int_equal(sph_checkpoint_read(&y, &rc, ck, msg, sizeof msg), 0);
+  assert_int_equal(y.step, 5);
+  for (int n = 0; n < 7; n++) assert_int_equal(sph_solver_step(&y, INFINITY, msg, sizeof msg), 0);
+  const struct sph_parts *px = &x.sys.part[SPH_KIND_FLUID], *py = &y.sys.part[SPH_KIND_FLUID];
+  assert_int_equal(px->n, py->n);
+  assert_memory_equal(px->rho, py->rho, px->n * sizeof(double));
+  for (int c = 0; c < 2; c++) {
+    assert_memory_equal(px->x[c], py->x[c], px->n * sizeof(double));
+    assert_memory_equal(px->v[c], py->v[c], px->n * sizeof(double));
+  }
+  assert_true(x.time == y.time);
+  /* Bad checkpoints are reported, not crashed on. */
+  FILE *f = fopen(ck, "wb");
+  fputs("not a checkpoint", f);
+  fclose(f);
+  assert_int_equal(sph_checkpoint_read(&y, &rc, ck, msg, sizeof msg), -1);
+  assert_non_null(strstr(msg, "not a SABRE SPH checkpoint"));
+  remove(ck);
+  free(rc.output_times);
+  sph_solver_free(&x);
+  sph_solver_free(&y);
+}
+
+int main(void) {
+  cmn_set_program_name("test_restart");
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_library_restart),
+      cmocka_unit_test(test_command_restart),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,103 @@
+/*
+ * The solver's case-file sections (docs/sph-case-file.md): defaults, and bad input failing with
+ * a message naming the file, line and key (non-fatal mode so that the messages can be checked).
+ */
+#include <math.h>
+#include <string.h>
+
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+#include "testutil.h"
+
+static const char base[] =
+    "geometry:\n"
+    "  walls: [{type: box, lo: [0, 0], hi: [1, 1]}, {type: box, lo: [2, 0], hi: [3, 1]}]\n"
+    "fluid: {rho0: 1000, c0: 20}\n"
+    "time: {end: 2.5}\n";
+
+/* Parse base + extra, read the solver sections; returns the rc and leaves the message. */
+static int read_case(const char *extra, struct sph_config *cfg, char *msg, size_t len) {
+  char text[4096];
+  snprintf(text, sizeof text, "%s%s", base, strncmp(extra, "--set ", 6) ? extra : "");
+  char err[512];
+  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
+  assert_non_null(c);
+  cmn_case_set_fatal(c, 0);
+  int rc = 0;
+  if (strncmp(extra, "--set ", 6) == 0) rc = cmn_case_set(c, extra + 6);
+  if (rc == 0) rc = sph_config_read(cfg, c, 2);
+  if (rc == 0) {
+    cmn_case_mark_used(c, "geometry");
+    rc = cmn_case_check_unused(c);
+  }
+  snprintf(msg, len, "%s", cmn_case_error(c));
+  cmn_case_free(c);
+  return rc;
+}
+
+static void test_defaults(void **state) {
+  (void)state;
+  struct sph_config cfg;
+  char msg[512];
+  assert_int_equal(read_case("", &cfg, msg, sizeof msg), 0);
+  assert_true(cfg.xi == 7.0 && cfg.nu == 0.0 && cfg.grad_k == 1.0);
+  assert_int_equal(cfg.diffusion, SPH_DIFFUSION_FERRARI);
+  assert_int_equal(cfg.gravity_correction, 2);
+  assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
+  assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
+  assert_true(isnan(cfg.free_surface));
+  assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
+  assert_int_equal(read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
+                             "probes: {pressure: [[0.5, 0.5]], gauges: [[0.2, 0], [0.8, 0]]}\n",
+                             &cfg, msg, sizeof msg),
+                   0);
+  assert_true(cfg.gravity[1] == -9.81 && cfg.nforces == 1 && cfg.forces[0].wall == 1);
+  assert_true(cfg.forces[0].nedges == 2 && cfg.forces[0].edges[1] == 3);
+  assert_true(cfg.nprobes == 1 && cfg.ngauges == 2 && cfg.gauges[1][0] == 0.8);
+}
+
+static void expect(const char *extra, const char *key, const char *what) {
+  struct sph_config cfg;
+  char msg[512];
+  assert_int_equal(read_case(extra, &cfg, msg, sizeof msg), -1);
+  print_message("%s\n", msg);
+  assert_non_null(strstr(msg, "case.yaml"));
+  if (!strstr(msg, key) || !strstr(msg, what)) fail_msg("'%s' lacks '%s' or '%s'", msg, key, what);
+}
+
+static void test_errors(void **state) {
+  (void)state;
+  expect("numerics: {cfll: 0.2}\n", "numerics.cfll", "");
+  expect("numerics: {diffusion: laplace}\n", "numerics.diffusion", "ferrari");
+  expect("numerics: {gradient_k: 3}\n", "numerics.gradient_k", "");
+  expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
+  expect("initial: {pressure: hydrostatic}\n", "initial.pressure", "gravity");
+  expect("initial: {velocity: [1]}\n", "initial.velocity", "");
+  expect("forces: [{name: a, wall: 2}]\n", "forces[0].wall", "");
+  expect("forces: [{name: a, wall: 0}, {name: a, wall: 1}]\n", "forces[1].name", "duplicate");
+  expect("probes: {pressure: [[1, 2, 3]]}\n", "probes.pressure[0]", "");
+  expect("--set time.end=-1", "time.end", "positive");
+  expect("--set fluid.xi=0.5", "fluid.xi", "");
+  expect("--set fluid.c0=fast", "fluid.c0", "fast");
+}
+
+static void test_missing(void **state) {
+  (void)state;
+  char err[512];
+  struct cmn_case *c =
+      cmn_case_parse("fluid: {rho0: 1000}\ntime: {end: 1}\n", "case.yaml", err, sizeof err);
+  cmn_case_set_fatal(c, 0);
+  struct sph_config cfg;
+  assert_int_equal(sph_config_read(&cfg, c, 2), -1);
+  assert_non_null(strstr(cmn_case_error(c), "fluid.c0"));
+  cmn_case_free(c);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_defaults),
+      cmocka_unit_test(test_errors),
+      cmocka_unit_test(test_missing),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

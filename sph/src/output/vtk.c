@@ -168,8 +168,8 @@ static int write_fluid(const char *path, const struct sph_system *s) {
 
 /*
  * Boundary piece: vertex particles are the points, segments the cells. A segment that crosses a
- * periodic boundary gets copies of its far vertices at their minimum-image positions, so that
- * ParaView draws it where it is rather than across the domain.
+ * periodic boundary uses copies of its far vertices at their minimum-image positions (one copy per
+ * vertex and image), so that ParaView draws it where it is rather than across the domain.
  */
 static int write_boundary(const char *path, const struct sph_system *s) {
   const struct sph_parts *pv = &s->part[SPH_KIND_VERTEX], *ps = &s->part[SPH_KIND_SEGMENT];
@@ -182,25 +182,37 @@ static int write_boundary(const char *path, const struct sph_system *s) {
     for (int a = 0; a < 3; a++) pos[i][a] = pv->x[a][i];
   }
   size_t *conn = cmn_malloc((ps->n * (size_t)dim + 1) * sizeof *conn);
+  /* Images of a vertex, chained from first_image[vertex] through next_image[point]. */
+  size_t *first_image = cmn_malloc((pv->n + 1) * sizeof *first_image);
+  size_t *next_image = cmn_malloc(cap * sizeof *next_image);
+  for (size_t i = 0; i < pv->n; i++) first_image[i] = SIZE_MAX;
   for (size_t j = 0; j < ps->n; j++) {
     double c[3] = {ps->x[0][j], ps->x[1][j], ps->x[2][j]}, v[3][3];
     sph_segment_vertices(s, j, c, v);
     for (int k = 0; k < dim; k++) {
-      size_t iv = ps->vertex[k][j];
-      size_t at = iv;
+      size_t iv = ps->vertex[k][j], at = iv;
       if (v[k][0] != pv->x[0][iv] || v[k][1] != pv->x[1][iv] || v[k][2] != pv->x[2][iv]) {
-        if (np == cap) {
-          cap *= 2;
-          pos = cmn_realloc(pos, cap * sizeof *pos);
-          map = cmn_realloc(map, cap * sizeof *map);
+        at = first_image[iv];
+        while (at != SIZE_MAX && memcmp(pos[at], v[k], sizeof pos[at]) != 0) at = next_image[at];
+        if (at == SIZE_MAX) {
+          if (np == cap) {
+            cap *= 2;
+            pos = cmn_realloc(pos, cap * sizeof *pos);
+            map = cmn_realloc(map, cap * sizeof *map);
+            next_image = cmn_realloc(next_image, cap * sizeof *next_image);
+          }
+          memcpy(pos[np], v[k], sizeof pos[np]);
+          map[np] = iv;
+          next_image[np] = first_image[iv];
+          first_image[iv] = np;
+          at = np++;
         }
-        memcpy(pos[np], v[k], sizeof pos[np]);
-        map[np] = iv;
-        at = np++;
       }
       conn[j * (size_t)dim + (size_t)k] = at;
     }
   }
+  free(first_image);
+  free(next_image);
   static const uint8_t cell_types[4] = {0, 1, 3, 5}; /* VTK_VERTEX, VTK_LINE, VTK_TRIANGLE */
   struct vtk_array arr[48];
   int narr = add_fields(arr, 0, SEC_POINTDATA, pv, np, map);

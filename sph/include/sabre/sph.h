@@ -151,9 +151,9 @@ struct sph_cells {
 };
 
 /**
- * Bin every particle of s into cells at least cell_min wide (> 0). Reuses c's arrays when called
- * again (initialise c to zero first). Stops with an input error if a periodic direction is shorter
- * than two cells' worth of reach.
+ * Bin every particle of s into cells at least cell_min wide (> 0; sparse sets get wider cells so
+ * that there are at most about 4 cells per particle). Reuses c's arrays when called again
+ * (initialise c to zero first). Stops (cmn_error) on a non-finite position.
  */
 void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cell_min);
 void sph_cells_free(struct sph_cells *c);
@@ -171,8 +171,9 @@ struct sph_nlist {
 /**
  * Build the list of particles of kind `other` within `radius` of each particle of kind `query`
  * (strictly closer; a particle is not its own neighbour). Segment–segment lists are not supported.
- * OpenMP-parallel gather over cells; the result does not depend on the thread count.
- * `c` must have been built from `s` with cell_min > 0 (any radius is allowed).
+ * OpenMP-parallel gather over cells; the result does not depend on the thread count. `c` must have
+ * been built from `s` as it is now; the radius may span up to 16 cells. Stops with an input error
+ * (exit 2) if a periodic direction is shorter than 2 (radius + segment reach).
  */
 void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const struct sph_system *s,
                      enum sph_kind query, enum sph_kind other, double radius);

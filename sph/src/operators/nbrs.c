@@ -22,16 +22,33 @@ static void reserve_pairs(struct sph_nbrs *nb) {
   nb->cap_pairs = cap;
 }
 
+/* A list with no neighbours at all (no particle of that kind): built here, which also keeps
+ * sph_nlist_build() from copying out of an empty buffer (memcpy from NULL, flagged by UBSan). */
+static int empty_list(struct sph_nlist *nl, const struct sph_system *s, enum sph_kind query,
+                      enum sph_kind other) {
+  if (s->part[other].n != 0 && s->part[query].n != 0) return 0;
+  size_t n = s->part[query].n;
+  nl->query = query;
+  nl->other = other;
+  nl->n = n;
+  nl->offset = cmn_realloc(nl->offset, (n + 1) * sizeof *nl->offset);
+  memset(nl->offset, 0, (n + 1) * sizeof *nl->offset);
+  return 1;
+}
+
 static void build(struct sph_nbrs *nb, const struct sph_system *s, double skin, int naive) {
   nb->radius = 2.0 * s->h + skin;
   if (!naive) sph_cells_build(&nb->cells, s, nb->radius);
   for (int k = 0; k < SPH_NKINDS; k++) {
+    if (empty_list(&nb->list[k], s, SPH_KIND_FLUID, (enum sph_kind)k)) continue;
     if (naive)
       sph_nlist_build_naive(&nb->list[k], s, SPH_KIND_FLUID, (enum sph_kind)k, nb->radius);
     else
       sph_nlist_build(&nb->list[k], &nb->cells, s, SPH_KIND_FLUID, (enum sph_kind)k, nb->radius);
   }
-  if (naive)
+  if (empty_list(&nb->vf, s, SPH_KIND_VERTEX, SPH_KIND_FLUID))
+    ;
+  else if (naive)
     sph_nlist_build_naive(&nb->vf, s, SPH_KIND_VERTEX, SPH_KIND_FLUID, nb->radius);
   else
     sph_nlist_build(&nb->vf, &nb->cells, s, SPH_KIND_VERTEX, SPH_KIND_FLUID, nb->radius);

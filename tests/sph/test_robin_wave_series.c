@@ -7,6 +7,8 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "sabre/sph_analytic.h"
@@ -271,6 +273,29 @@ static void test_wave_equation(void **state) {
   }
 }
 
+/* With SABRE_ROBIN_WAVE_CSV=<path> in the environment, write the analytical solution at the four
+ * times of M Fig. 6 for cases/sph/robin_wave_1d/plot_analytic.py (columns t, x, u, u_t, u_x).
+ * Without it the test only checks that the evaluation is finite on that grid. */
+static void test_fig6_table(void **state) {
+  (void)state;
+  const char *path = getenv("SABRE_ROBIN_WAVE_CSV");
+  FILE *f = path != NULL ? fopen(path, "w") : NULL;
+  if (path != NULL) assert_non_null(f);
+  if (f != NULL) fprintf(f, "t,x,u,u_t,u_x\n");
+  for (size_t it = 0; it < sizeof TIMES / sizeof TIMES[0]; it++)
+    for (int j = 0; j <= 200; j++) {
+      const double x = j / 200.0;
+      double u, ut, ux;
+      sph_robin_wave_eval(&W, x, TIMES[it], &u, &ut, &ux);
+      assert_true(isfinite(u) && isfinite(ut) && isfinite(ux));
+      if (f != NULL) fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g\n", TIMES[it], x, u, ut, ux);
+    }
+  if (f != NULL) {
+    assert_int_equal(fclose(f), 0);
+    print_message("wrote %s\n", path);
+  }
+}
+
 static void test_bad_input(void **state) {
   (void)state;
   struct sph_robin_wave w;
@@ -304,6 +329,7 @@ int main(void) {
       cmocka_unit_test(test_initial_condition),
       cmocka_unit_test(test_against_dalembert),
       cmocka_unit_test(test_wave_equation),
+      cmocka_unit_test(test_fig6_table),
       cmocka_unit_test(test_bad_input),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

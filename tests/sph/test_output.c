@@ -26,6 +26,9 @@ static int teardown(void **state) {
   return system(cmd) == 0 ? 0 : -1;
 }
 
+static void *copies[32];
+static size_t ncopies;
+
 struct vtu {
   char *buf;
   size_t len;
@@ -72,7 +75,15 @@ static const void *vtu_array(const struct vtu *v, const char *sec, const char *n
   uint64_t n;
   memcpy(&n, v->appended + offset, sizeof n);
   *bytes = (size_t)n;
-  return v->appended + offset + 8;
+  /* The appended data are not aligned: hand out an aligned copy (freed by free_copies()). */
+  assert_true(ncopies < sizeof copies / sizeof copies[0]);
+  copies[ncopies] = malloc(n + 8);
+  memcpy(copies[ncopies], v->appended + offset + 8, n);
+  return copies[ncopies++];
+}
+
+static void free_copies(void) {
+  while (ncopies > 0) free(copies[--ncopies]);
 }
 
 static void test_roundtrip(void **state) {
@@ -174,6 +185,7 @@ static void test_roundtrip(void **state) {
   assert_non_null(
       strstr(text, "timestep=\"0.125\" group=\"\" part=\"1\" file=\"boundary_000001.vtu\""));
   assert_non_null(strstr(text, "timestep=\"0\" group=\"\" part=\"0\" file=\"fluid_000000.vtu\""));
+  free_copies();
   sph_system_free(&s);
 }
 

@@ -20,6 +20,9 @@
  * Like riemann/, this part of the library never prints and never exits: every fallible call
  * returns a status (SPH_ROBIN_SUCCESS == 0) that sph_robin_strerror() names. No allocation and no
  * static state: the workspace is a plain struct (one per thread), sized for SPH_ROBIN_M_MAX.
+ * The solve calls GSL (Jacobi SVD), whose default error handler aborts on a GSL error; as with
+ * riemann/, applications call gsl_set_error_handler_off() once at start-up (the SABRE programs and
+ * tests do), after which such a failure comes back as SPH_ROBIN_ESINGULAR.
  */
 #ifndef SABRE_SPH_ROBIN_H
 #define SABRE_SPH_ROBIN_H
@@ -94,7 +97,7 @@ struct sph_robin_ws {
   double distinct[SPH_ROBIN_M_MAX];
   double a[SPH_ROBIN_M_MAX * SPH_ROBIN_M_MAX]; /**< X^T Λ X (upper triangle while adding) */
   double b[SPH_ROBIN_M_MAX];                   /**< X^T Λ y */
-  /* scratch of the SVD solve */
+  /* scratch of the SVD solve (work: Σ⁻¹Uᵀb) */
   double v[SPH_ROBIN_M_MAX * SPH_ROBIN_M_MAX];
   double s[SPH_ROBIN_M_MAX], work[SPH_ROBIN_M_MAX], beta[SPH_ROBIN_M_MAX];
   double rcond; /**< σ_min/σ_max of the last solve (set by sph_robin_finish) */
@@ -119,7 +122,8 @@ void sph_robin_add(struct sph_robin_ws *ws, const double *r_av, double f_a, doub
                    double rho_a);
 
 /**
- * Solve M(73) through the SVD of the m×m matrix (GSL) and return f_v = β1, M(74).
+ * Solve M(73) through the SVD of the m×m matrix (GSL one-sided Jacobi, no allocation) and
+ * return f_v = β1, M(74).
  * Returns SPH_ROBIN_SUCCESS; SPH_ROBIN_EINVAL (see above); SPH_ROBIN_ETOOFEW when fewer than m
  * distinct distances (pairwise further apart than dist_tol·L) carry a positive weight;
  * SPH_ROBIN_ESINGULAR when σ_min/σ_max < rcond_min (m distinct distances are necessary but not

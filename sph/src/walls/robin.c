@@ -6,6 +6,7 @@
  * normal matrix is well scaled. Scaling the columns j ≥ 2 only rescales β_j; the β1 column
  * 1 − (μ1/μ2) x = 1 − κ ξ is unchanged, so β1 = f_v is the same as in the paper's unscaled M(74).
  */
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_vector.h>
@@ -159,23 +160,29 @@ int sph_robin_finish(struct sph_robin_ws *ws, double *f_v) {
   for (int j = 0; j < m * m; j++)
     if (!isfinite(ws->a[j])) return fail(ws, SPH_ROBIN_EINVAL);
 
-  /* SVD rather than Cholesky: it never calls the GSL error handler on a (near-)singular matrix,
-   * so the library cannot abort, and σ_min/σ_max is the conditioning test. The views wrap the
-   * workspace arrays: no allocation. */
+  /* SVD by one-sided Jacobi (GSL) on views of the workspace arrays: it allocates nothing (GSL's
+   * Golub–Reinsch SV_decomp/SV_solve allocate scratch vectors), gives σ_min/σ_max for the
+   * conditioning test, and, unlike Cholesky, does not report a (near-)singular matrix through the
+   * GSL error handler. β = V Σ⁻¹ Uᵀ b by two GSL BLAS products. */
   gsl_matrix_view a = gsl_matrix_view_array(ws->a, (size_t)m, (size_t)m);
   gsl_matrix_view v = gsl_matrix_view_array(ws->v, (size_t)m, (size_t)m);
   gsl_vector_view s = gsl_vector_view_array(ws->s, (size_t)m);
   gsl_vector_view work = gsl_vector_view_array(ws->work, (size_t)m);
   gsl_vector_view b = gsl_vector_view_array(ws->b, (size_t)m);
   gsl_vector_view beta = gsl_vector_view_array(ws->beta, (size_t)m);
-  if (gsl_linalg_SV_decomp(&a.matrix, &v.matrix, &s.vector, &work.vector) != GSL_SUCCESS)
+  if (gsl_linalg_SV_decomp_jacobi(&a.matrix, &v.matrix, &s.vector) != GSL_SUCCESS)
     return fail(ws, SPH_ROBIN_ESINGULAR);
-  const double smax = ws->s[0], smin = ws->s[m - 1];
+  double smax = 0.0, smin = INFINITY;
+  for (int j = 0; j < m; j++) {
+    smax = fmax(smax, ws->s[j]);
+    smin = fmin(smin, ws->s[j]);
+  }
   ws->rcond = smax > 0.0 ? smin / smax : 0.0;
-  if (!(smax > 0.0) || !(ws->rcond >= ws->rcond_min) || !(smin > 0.0))
+  if (!(smax > 0.0) || !(smin > 0.0) || !(ws->rcond >= ws->rcond_min))
     return fail(ws, SPH_ROBIN_ESINGULAR);
-  if (gsl_linalg_SV_solve(&a.matrix, &v.matrix, &s.vector, &b.vector, &beta.vector) != GSL_SUCCESS)
-    return fail(ws, SPH_ROBIN_ESINGULAR);
+  gsl_blas_dgemv(CblasTrans, 1.0, &a.matrix, &b.vector, 0.0, &work.vector); /* Uᵀ b */
+  for (int j = 0; j < m; j++) ws->work[j] /= ws->s[j];
+  gsl_blas_dgemv(CblasNoTrans, 1.0, &v.matrix, &work.vector, 0.0, &beta.vector);
   if (!isfinite(ws->beta[0])) return fail(ws, SPH_ROBIN_ESINGULAR);
   *f_v = ws->beta[0];
   return SPH_ROBIN_SUCCESS;

@@ -452,7 +452,8 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t ci = 0; ci < c->ncells; ci++) {
-    if (startq[ci] == startq[ci + 1]) continue;
+    /* No buffer: its thread found no neighbour at all. */
+    if (startq[ci] == startq[ci + 1] || !buf[cell_thread[ci]].data) continue;
     const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
     for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
       size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];

@@ -94,6 +94,7 @@ void sph_parts_reserve(struct sph_parts *p, size_t capacity) {
 
 size_t sph_parts_append(struct sph_parts *p, size_t count) {
   size_t first = p->n;
+  if (count == 0) return first;
   sph_parts_reserve(p, p->n + count);
   for (int i = 0; i < NFIELDS; i++) {
     if (!carries(p, &fields[i])) continue;

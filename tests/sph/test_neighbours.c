@@ -168,6 +168,31 @@ static void test_neighbours_wide_radius(void **state) {
   sph_system_free(&s);
 }
 
+/* Kinds with no particles, and lists with no pairs at all (sanitizers watch the empty paths). */
+static void test_neighbours_empty(void **state) {
+  (void)state;
+  struct sph_system s;
+  sph_system_init(&s, 2);
+  s.domain.hi[0] = s.domain.hi[1] = 1;
+  s.domain.periodic[0] = 1;
+  assert_int_equal(sph_system_append(&s, SPH_KIND_VERTEX, 0), 0);
+  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, 3);
+  for (size_t i = f0; i < 3; i++) s.part[SPH_KIND_FLUID].x[0][i] = 0.3 * (double)i;
+  struct sph_cells cells = {0};
+  struct sph_nlist nl = {0};
+  sph_cells_build(&cells, &s, 0.1);
+  for (int k = 0; k < SPH_NKINDS; k++) {
+    sph_nlist_build(&nl, &cells, &s, SPH_KIND_FLUID, (enum sph_kind)k, 0.1);
+    assert_int_equal(nl.n, 3);
+    assert_int_equal(nl.offset[3], 0);
+  }
+  sph_nlist_build(&nl, &cells, &s, SPH_KIND_SEGMENT, SPH_KIND_FLUID, 0.1);
+  assert_int_equal(nl.n, 0);
+  sph_nlist_free(&nl);
+  sph_cells_free(&cells);
+  sph_system_free(&s);
+}
+
 /* Point-to-element distance against hand-computed cases (face, edge and vertex regions). */
 static void test_element_distance(void **state) {
   (void)state;
@@ -188,8 +213,8 @@ static void test_element_distance(void **state) {
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_element_distance), cmocka_unit_test(test_neighbours_1d),
-      cmocka_unit_test(test_neighbours_2d), cmocka_unit_test(test_neighbours_3d),
-      cmocka_unit_test(test_neighbours_wide_radius)};
+      cmocka_unit_test(test_element_distance),       cmocka_unit_test(test_neighbours_1d),
+      cmocka_unit_test(test_neighbours_2d),          cmocka_unit_test(test_neighbours_3d),
+      cmocka_unit_test(test_neighbours_wide_radius), cmocka_unit_test(test_neighbours_empty)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,6 +7,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
+#include "sabre/sph_solver.h"
 #include "sabre/sph_walls.h"
 
 void sph_cmd_usage(FILE *out) {
@@ -239,6 +240,10 @@ int sph_cmd_mesh(int argc, char **argv) {
 
   struct sph_geometry g;
   sph_geometry_read(&g, c);
+  if (cmn_case_has(c, "fluid")) { /* a full run case: check the solver's sections too */
+    struct sph_config cfg;
+    sph_config_read(&cfg, c, g.dim);
+  }
   cmn_case_check_unused(c);
   struct sph_system s;
   sph_system_from_geometry(&s, &g);

@@ -271,6 +271,15 @@ static void test_mesh_command(void **state) {
   fclose(f);
   assert_non_null(strstr(used, "dr: 0.05"));
   assert_non_null(strstr(used, "h_over_dr:"));
+  /* A run case (solver sections next to geometry) is accepted, and its sections are checked. */
+  f = fopen(case_path, "a");
+  fputs("fluid: {rho0: 1000, c0: 20}\ntime: {end: 0.5}\n", f);
+  fclose(f);
+  const char *full[] = {"mesh", case_path, "--output", dir, NULL};
+  assert_int_equal(run(sph_cmd_mesh, full), 0);
+  const char *bad_solver[] = {"mesh", case_path, "--output", dir, "--set", "fluid.rh0=1", NULL};
+  assert_int_equal(run(sph_cmd_mesh, bad_solver), CMN_EXIT_INPUT);
+  assert_non_null(strstr(out, "unknown key 'fluid.rh0'"));
   /* A typo in the case is reported. */
   const char *typo[] = {"mesh", case_path, "--output", dir, "--set", "geometry.dx=1", NULL};
   assert_int_equal(run(sph_cmd_mesh, typo), CMN_EXIT_INPUT);

@@ -273,11 +273,41 @@ static void test_fill_3d_stl(void **state) {
   sph_geometry_free(&g);
 }
 
+/* An STL tank (fluid inside) filled from a region much larger than it: lattice points far outside
+ * the walls take their side from their neighbours and are dropped. */
+static void test_fill_3d_stl_tank(void **state) {
+  (void)state;
+  struct sph_mesh tank;
+  sph_mesh_init(&tank, 3);
+  sph_mesh_box(&tank, (double[]){0, 0, 0}, (double[]){0.6, 0.5, 0.4}, 0.6, 0, 0,
+               sph_mesh_add_source(&tank, "tank"));
+  char path[128];
+  snprintf(path, sizeof path, "%s/tank.stl", tmpdir);
+  assert_int_equal(sph_mesh_write_stl(&tank, path, 0), 0);
+  sph_mesh_free(&tank);
+  struct sph_geometry g;
+  struct sph_system s;
+  build(
+      "geometry:\n  dimension: 3\n  dr: 0.05\n  walls:\n"
+      "    - {type: stl, file: tank.stl}\n"
+      "  fluid:\n    - {type: box, lo: [-0.5, -0.5, -0.5], hi: [1.5, 1.5, 1.5]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 12 * 10 * 8);
+  for (size_t i = 0; i < s.part[SPH_KIND_FLUID].n; i++)
+    for (int a = 0; a < 3; a++) {
+      double x = s.part[SPH_KIND_FLUID].x[a][i];
+      assert_true(x > 0 && x < 0.6);
+    }
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_box_2d),           cmocka_unit_test(test_fill_2d_polygons),
       cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
-      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl)};
+      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl),
+      cmocka_unit_test(test_fill_3d_stl_tank)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

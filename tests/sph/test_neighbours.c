@@ -32,8 +32,12 @@ static void random_system(struct sph_system *s, int dim, unsigned periodic, uint
   }
   size_t f0 = sph_system_append(s, SPH_KIND_FLUID, nf);
   for (size_t i = f0; i < f0 + nf; i++)
-    for (int a = 0; a < dim; a++)
-      s->part[SPH_KIND_FLUID].x[a][i] = sabre_rng_uniform(&rng, lo[a], hi[a]);
+    for (int a = 0; a < dim; a++) {
+      /* Across a periodic boundary, some particles have moved out of the box since their last
+       * wrap (by up to 3 % of the period). */
+      double out = s->domain.periodic[a] ? 0.03 * (hi[a] - lo[a]) : 0.0;
+      s->part[SPH_KIND_FLUID].x[a][i] = sabre_rng_uniform(&rng, lo[a] - out, hi[a] + out);
+    }
   /* A few extra vertices not attached to any segment, then dim vertices per segment. */
   size_t nv_free = nseg / 2;
   size_t v0 = sph_system_append(s, SPH_KIND_VERTEX, nv_free + nseg * (size_t)dim);

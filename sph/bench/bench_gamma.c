@@ -102,9 +102,11 @@ static double bench_eval(int dim, double *checksum) {
       /* the elements within the support, as a neighbour search would give */
       struct sph_wall_element near[2 * M * M];
       size_t nn = 0;
+      const double reach = 2.0 * h + 1.5 * dr; /* support + element size */
       for (size_t s = 0; s < n; s++) {
-        const double cx = e[s].x[0][0] - a[0], cy = e[s].x[0][1] - a[1];
-        if (cx * cx + cy * cy < (2.0 * h + 2.0 * dr) * (2.0 * h + 2.0 * dr)) near[nn++] = e[s];
+        double r2 = 0.0;
+        for (int c = 0; c < 3; c++) r2 += (e[s].x[0][c] - a[c]) * (e[s].x[0][c] - a[c]);
+        if (r2 < reach * reach) near[nn++] = e[s];
       }
       double gamma, g[3];
       if (sph_gamma_eval(&k, a, nn, near, &gamma, g) != 0) abort();

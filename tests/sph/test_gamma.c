@@ -202,6 +202,17 @@ static void test_on_wall_2d(void **state) {
       double b[3] = {1e-6 * H * cos(0.5 * angles[i]), 1e-6 * H * sin(0.5 * angles[i]), 0.0};
       ref_apply(&m, b, b);
       assert_continuous(&k, c[0].x[0], b, 2, c);
+      /* within the plane tolerance of both arms but not of the vertex: moved onto the vertex */
+      double t[3] = {1.2e-12 * H * cos(0.5 * angles[i]), 1.2e-12 * H * sin(0.5 * angles[i]), 0.0};
+      ref_apply(&m, t, t);
+      assert_abs(eval(&k, t, 2, c, g), angles[i] / (2.0 * REF_PI), 1e-10);
+      /* 1e-12 h from the line of one arm, 1e-8 h beyond its end (in the fluid of re-entrant
+       * corners): that arm is then evaluated in closed form, not as on the wall */
+      if (angles[i] > REF_PI) {
+        double x[3] = {-1e-8 * H, 0.5e-12 * H, 0.0};
+        ref_apply(&m, x, x);
+        assert_continuous(&k, c[0].x[0], x, 2, c);
+      }
       /* on one arm, away from the corner but within its support */
       double on[3] = {0.7 * H, 0.0, 0.0}, near[3] = {0.7 * H, 1e-6 * H, 0.0};
       ref_apply(&m, on, on);
@@ -308,6 +319,16 @@ static void test_on_wall_3d(void **state) {
         double b[3] = {0.3 * H, 1e-6 * H * cos(0.5 * angles[i]), 1e-6 * H * sin(0.5 * angles[i])};
         ref_apply(&m, b, b);
         assert_continuous(&k, a, b, 4, w);
+        if (angles[i] > REF_PI) { /* 1e-12 h from the plane of a face, 1e-6 h beyond its edge */
+          double x[3] = {0.3 * H, -1e-6 * H, 0.5e-12 * H};
+          ref_apply(&m, x, x);
+          assert_continuous(&k, a, x, 4, w);
+        }
+        /* within the plane tolerance of both faces but not of the edge: moved onto the edge */
+        double t[3] = {0.3 * H, 1.2e-12 * H * cos(0.5 * angles[i]),
+                       1.2e-12 * H * sin(0.5 * angles[i])};
+        ref_apply(&m, t, t);
+        assert_abs(eval(&k, t, 4, w, g), angles[i] / (2.0 * REF_PI), 1e-10);
       }
     }
     /* box corner: 1/8 at the corner (both triangulations); continuous along its edges */

@@ -56,16 +56,17 @@ struct sph_wall_element {
 };
 
 /**
- * A point closer than SPH_GAMMA_PLANE_TOL·h to the plane (line, point) of an element is treated
- * as lying on it: its γ term is replaced by the one-sided limit from the fluid (the solid-angle
- * limit). γ changes by at most ≈ 0.74·SPH_GAMMA_PLANE_TOL across that band.
+ * A point closer than SPH_GAMMA_PLANE_TOL·h to the plane (line, point) of an element and to the
+ * element itself is treated as lying on it: its γ term is replaced by the one-sided limit from the
+ * fluid (the solid-angle limit). γ changes by at most ≈ 0.74·SPH_GAMMA_PLANE_TOL across that band.
  */
 #define SPH_GAMMA_PLANE_TOL 1e-12
 
 /**
- * sph_gamma_eval moves a point on the walls that lies within SPH_GAMMA_SNAP_TOL·h of an element
- * vertex (or else of a 3D edge) onto it, so that all elements sharing it agree on where the point
- * is (γ changes by ≲ SPH_GAMMA_SNAP_TOL). This resolves corners of interior angle ≳ 2·10⁻² rad.
+ * sph_gamma_eval moves a point on the walls (within SPH_GAMMA_PLANE_TOL·h of an element's plane)
+ * that lies within SPH_GAMMA_SNAP_TOL·h of an element vertex (or else of a 3D edge) onto it, so
+ * that all elements sharing it agree on where the point is (γ changes by ≲ SPH_GAMMA_SNAP_TOL).
+ * This resolves corners of interior angle ≳ 2·10⁻² rad.
  */
 #define SPH_GAMMA_SNAP_TOL 1e-10
 
@@ -78,7 +79,7 @@ struct sph_wall_element {
  * grad_gamma_as [1/m] is ∇γ_as = (∫_s w dS) n_s, J(3); components beyond d are set to 0.
  * Both are 0 when s lies outside the support of a. Closed form in 1D, 2D and 3D.
  *
- * When a lies on the element's plane (within SPH_GAMMA_PLANE_TOL·h), gamma_term is the limit for a
+ * When a lies on the element (within SPH_GAMMA_PLANE_TOL·h), gamma_term is the limit for a
  * approaching along +n_s (e.g. 1/2 inside the element, 1/4 at an end of a 2D segment, β/(4π) at a
  * triangle vertex of angle β). Points on the walls need a common approach direction for all the
  * elements they touch: use sph_gamma_eval() for those. No validation (hot path).
@@ -92,17 +93,18 @@ void sph_gamma_element(const struct sph_kernel *k, const double *a,
  * contribute 0). a must lie in the fluid domain Ω or on its boundary.
  *
  * Points on the walls (solid-angle limit): γ is continuous up to the wall, but each element's term
- * jumps across the element's plane. If a lies on an element (within SPH_GAMMA_PLANE_TOL·h), it is
- * first moved onto a vertex or edge within SPH_GAMMA_SNAP_TOL·h; then, for the elements whose
- * plane contains it, the term is replaced by its limit as a + ε m, ε → 0+, where m is the
- * angle-weighted pseudo-normal of the elements that contain a (a vertex, edge or interior point of
- * each). This gives 1/2 on a flat wall, Θ/(2π) at a 2D corner of interior angle Θ (1/4 for a right
- * angle), 1/4 on a 3D right-angle edge and 1/8 in a 3D box corner.
+ * jumps across the element's plane. If a lies on the walls (within SPH_GAMMA_PLANE_TOL·h of an
+ * element's plane and SPH_GAMMA_SNAP_TOL·h of the element), it is first moved onto a vertex or edge
+ * within SPH_GAMMA_SNAP_TOL·h; then, for the elements that contain it, the term is replaced by its
+ * limit as a + ε m, ε → 0+, where m is the angle-weighted pseudo-normal of those elements (a
+ * vertex, edge or interior point of each); docs/sph-gamma.md §6. This gives 1/2 on a flat wall,
+ * Θ/(2π) at a 2D corner of interior angle Θ (1/4 for a right angle), 1/4 on a 3D right-angle edge
+ * and 1/8 in a 3D box corner.
  *
- * Returns 0, or -1 on bad input (NULL pointers with n > 0, kernel not initialised, a normal that
- * is not unit or not perpendicular to its element within 1e-6, a degenerate element, or a point
- * on the walls with no direction into the fluid, e.g. on a zero-thickness plate); outputs are then
- * NaN.
+ * Returns 0, or -1 on bad input (a NULL pointer; e may be NULL if n = 0; kernel not initialised, a
+ * normal that is not unit or not perpendicular to its element within 1e-6, a degenerate element, or
+ * a point on the walls with no direction into the fluid, e.g. on a zero-thickness plate); outputs
+ * are then NaN.
  */
 int sph_gamma_eval(const struct sph_kernel *k, const double *a, size_t n,
                    const struct sph_wall_element *e, double *gamma, double grad_gamma[3]);

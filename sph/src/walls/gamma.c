@@ -12,7 +12,7 @@
 typedef void (*element_fn)(const struct sph_kernel *, const double *,
                            const struct sph_wall_element *, const double *, double *, double *);
 typedef int (*incident_fn)(const struct sph_kernel *, const double *,
-                           const struct sph_wall_element *, double *);
+                           const struct sph_wall_element *, double, double *);
 typedef int (*check_fn)(const struct sph_wall_element *);
 
 static const element_fn element_fns[4] = {NULL, sph_gamma1d_element, sph_gamma2d_element,
@@ -86,35 +86,38 @@ int sph_gamma_eval(const struct sph_kernel *k, const double *a, size_t n,
   for (int i = 0; i < dim; i++)
     if (!isfinite(a[i])) return fail(gamma, grad_gamma);
 
-  /* Pass 1: validate, and find whether a lies on the walls. */
+  /* Pass 1: validate, and find whether a lies on the walls, near an element vertex or edge. */
+  const double tol_plane = SPH_GAMMA_PLANE_TOL * k->h, tol_snap = SPH_GAMMA_SNAP_TOL * k->h;
   int on_wall = 0;
-  double m[3] = {0.0, 0.0, 0.0};
   for (size_t s = 0; s < n; s++) {
     if (check_fns[dim](&e[s]) != 0) return fail(gamma, grad_gamma);
-    on_wall |= incident_fns[dim](k, a, &e[s], m);
+    on_wall |= incident_fns[dim](k, a, &e[s], tol_snap, NULL);
   }
   double as[3] = {a[0], dim > 1 ? a[1] : 0.0, dim > 2 ? a[2] : 0.0};
+  double m[3] = {0.0, 0.0, 0.0};
   const double *dir = NULL;
   if (on_wall) {
     /* A point on the walls near a vertex or edge is moved onto it, so that every element sharing
      * that vertex or edge classifies it alike (docs/sph-gamma.md §6); then the pseudo-normal m of
      * the elements containing it is the common direction of approach from the fluid. */
     snap(k, a, n, e, as);
-    m[0] = m[1] = m[2] = 0.0;
-    for (size_t s = 0; s < n; s++) incident_fns[dim](k, as, &e[s], m);
-    const double mn = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    if (!(mn > 1e-8)) return fail(gamma, grad_gamma);
-    for (int i = 0; i < 3; i++) m[i] /= mn;
-    /* m must not be tangent to any touched element (e.g. on a zero-thickness plate). */
-    for (size_t s = 0; s < n; s++) {
-      double tmp[3] = {0.0, 0.0, 0.0};
-      if (incident_fns[dim](k, as, &e[s], tmp)) {
-        const double tn = sqrt(tmp[0] * tmp[0] + tmp[1] * tmp[1] + tmp[2] * tmp[2]);
-        if (!(fabs(m[0] * tmp[0] + m[1] * tmp[1] + m[2] * tmp[2]) > 1e-8 * tn))
-          return fail(gamma, grad_gamma);
+    int touched = 0;
+    for (size_t s = 0; s < n; s++) touched += incident_fns[dim](k, as, &e[s], tol_plane, m);
+    if (touched > 0) {
+      const double mn = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      if (!(mn > 1e-8)) return fail(gamma, grad_gamma);
+      for (int i = 0; i < 3; i++) m[i] /= mn;
+      /* m must not be tangent to any touched element (e.g. on a zero-thickness plate). */
+      for (size_t s = 0; s < n; s++) {
+        double tmp[3] = {0.0, 0.0, 0.0};
+        if (incident_fns[dim](k, as, &e[s], tol_plane, tmp)) {
+          const double tn = sqrt(tmp[0] * tmp[0] + tmp[1] * tmp[1] + tmp[2] * tmp[2]);
+          if (!(fabs(m[0] * tmp[0] + m[1] * tmp[1] + m[2] * tmp[2]) > 1e-8 * tn))
+            return fail(gamma, grad_gamma);
+        }
       }
+      dir = m;
     }
-    dir = m;
   }
 
   /* Pass 2: G1 and J(4). */

@@ -35,9 +35,10 @@ void sph_gamma1d_element(const struct sph_kernel *k, const double *a,
 }
 
 int sph_gamma1d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]) {
+                         const struct sph_wall_element *e, double tol, double m[3]) {
+  (void)tol; /* a point has no extent: on the wall means within the plane tolerance */
   if (fabs(a[0] - e->x[0][0]) > SPH_GAMMA_PLANE_TOL * k->h) return 0;
-  m[0] += e->normal[0] > 0.0 ? 1.0 : -1.0;
+  if (m != NULL) m[0] += e->normal[0] > 0.0 ? 1.0 : -1.0;
   return 1;
 }
 

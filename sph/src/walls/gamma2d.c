@@ -83,8 +83,14 @@ static void segment_integrals(double dh, double t1, double t2, double *iw, doubl
   *angle = atan2(d * (tb - ta), d2 + ta * tb);
 }
 
-/* Limit of gamma_term for a on the line of the segment, approaching along m (THEORY §3.1 and
- * docs/sph-gamma.md §4.3): the angle under which a + ε m sees the segment, over 2π. */
+/* Whether a lies on the closed segment: within SPH_GAMMA_PLANE_TOL·h of its line and within tol of
+ * the segment along it. */
+static int on_segment(const struct sph_kernel *k, const struct seg_frame *f, double tol) {
+  return fabs(f->delta) <= SPH_GAMMA_PLANE_TOL * k->h && f->t[0] <= tol && f->t[1] >= -tol;
+}
+
+/* Limit of gamma_term for a on the segment, approaching along m (docs/sph-gamma.md §4): the angle
+ * under which a + ε m sees the segment, over 2π. */
 static double limit_term(const struct sph_kernel *k, const double *a,
                          const struct sph_wall_element *e, const struct seg_frame *f,
                          const double *m) {
@@ -108,8 +114,10 @@ void sph_gamma2d_element(const struct sph_kernel *k, const double *a,
                          double grad[3]) {
   struct seg_frame f;
   frame(e, a, &f);
-  const int on_plane = fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * k->h;
-  const double dh = on_plane ? 0.0 : f.delta * k->inv_h;
+  /* On the segment the term needs the one-sided limit; anywhere else, even 1e-13 h from its line,
+   * the closed form is well conditioned (and 0 exactly on the line off the segment). */
+  const int on = on_segment(k, &f, SPH_GAMMA_PLANE_TOL * k->h);
+  const double dh = on ? 0.0 : f.delta * k->inv_h;
   const double t1 = f.t[0] * k->inv_h, t2 = f.t[1] * k->inv_h;
   double iw, poly, angle;
   segment_integrals(dh, t1, t2, &iw, &poly, &angle);
@@ -117,24 +125,24 @@ void sph_gamma2d_element(const struct sph_kernel *k, const double *a,
   grad[0] = gw * e->normal[0];
   grad[1] = gw * e->normal[1];
   grad[2] = 0.0;
-  if (on_plane) {
+  if (on) {
     *term = limit_term(k, a, e, &f, m);
   } else {
-    const double sgn = dh > 0.0 ? 1.0 : -1.0;
+    const double sgn = dh > 0.0 ? 1.0 : (dh < 0.0 ? -1.0 : 0.0);
     *term = SPH_WENDLAND_ALPHA2 * (-dh * poly + 2.0 / 7.0 * sgn * angle);
   }
 }
 
 int sph_gamma2d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]) {
-  const double tol = SPH_GAMMA_PLANE_TOL * k->h;
+                         const struct sph_wall_element *e, double tol, double m[3]) {
   struct seg_frame f;
   frame(e, a, &f);
-  if (fabs(f.delta) > tol) return 0;
-  if (f.t[0] > tol || f.t[1] < -tol) return 0;
+  if (!on_segment(k, &f, tol)) return 0;
   /* Equal weights: at a shared end this is the bisector of the two normals. */
-  m[0] += f.nu[0];
-  m[1] += f.nu[1];
+  if (m != NULL) {
+    m[0] += f.nu[0];
+    m[1] += f.nu[1];
+  }
   return 1;
 }
 

@@ -180,11 +180,10 @@ static double solid_angle(const double *u, const double *v, const double *w) {
 
 enum incidence { OUTSIDE, VERTEX, EDGE, INTERIOR };
 
-/* Where a lies on the closed triangle, given |δ| ≤ tol; *j is the vertex, or the edge j → j+1. */
-static enum incidence classify(const struct sph_kernel *k, const double *a,
-                               const struct sph_wall_element *e, const struct tri_frame *f,
-                               int *j) {
-  const double tol = SPH_GAMMA_PLANE_TOL * k->h;
+/* Where a lies on the closed triangle, given |δ| ≤ SPH_GAMMA_PLANE_TOL·h: within tol of a vertex
+ * (*j), of the edge j → j+1, or inside. */
+static enum incidence classify(const double *a, const struct sph_wall_element *e,
+                               const struct tri_frame *f, double tol, int *j) {
   for (*j = 0; *j < 3; (*j)++) {
     double r[3];
     for (int i = 0; i < 3; i++) r[i] = a[i] - e->x[*j][i];
@@ -226,7 +225,7 @@ static double limit_term(const struct sph_kernel *k, const double *a,
   const double mneg[3] = {-mm[0], -mm[1], -mm[2]};
   int j;
   double omega = 0.0, uk[3], ul[3], uj[3];
-  switch (classify(k, a, e, f, &j)) {
+  switch (classify(a, e, f, SPH_GAMMA_PLANE_TOL * k->h, &j)) {
     case VERTEX:
       unit_to(a, e->x[(j + 1) % 3], uk);
       unit_to(a, e->x[(j + 2) % 3], ul);
@@ -256,9 +255,13 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   *term = 0.0;
   const double h = k->h;
   if (fabs(f.delta) >= 2.0 * h) return;
-  const int on_plane = fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * h;
+  /* On the triangle the term needs the one-sided limit; anywhere else, even 1e-13 h from its
+   * plane, the closed form is well conditioned (and 0 exactly on the plane off the triangle). */
+  int where;
+  const int on = fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * h &&
+                 classify(a, e, &f, SPH_GAMMA_PLANE_TOL * h, &where) != OUTSIDE;
   struct tri_consts t;
-  consts(on_plane ? 0.0 : f.delta * k->inv_h, &t);
+  consts(on ? 0.0 : f.delta * k->inv_h, &t);
   double P[3][2];
   for (int j = 0; j < 3; j++) {
     P[j][0] = f.p[j][0] * k->inv_h;
@@ -268,7 +271,7 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   const double cx = (P[0][0] + P[1][0] + P[2][0]) / 3.0, cy = (P[0][1] + P[1][1] + P[2][1]) / 3.0;
   double rad = 0.0;
   for (int j = 0; j < 3; j++) rad = fmax(rad, hypot(P[j][0] - cx, P[j][1] - cy));
-  if (hypot(cx, cy) - rad >= sqrt(t.R2)) return; /* also the on-plane limit: a is off s */
+  if (hypot(cx, cy) - rad >= sqrt(t.R2)) return; /* a is off s: not `on` either */
   double iw = 0.0, ig = 0.0, theta = 0.0;
   int cut = 0;
   for (int j = 0; j < 3; j++) cut |= edge_integrals(&t, P[j], P[(j + 1) % 3], &iw, &ig, &theta);
@@ -281,17 +284,17 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   }
   const double gw = f.sigma * SPH_WENDLAND_ALPHA3 * k->inv_h * iw;
   for (int i = 0; i < 3; i++) grad[i] = gw * e->normal[i];
-  *term = on_plane ? limit_term(k, a, e, &f, m) : f.sigma * SPH_WENDLAND_ALPHA3 * ig;
+  *term = on ? limit_term(k, a, e, &f, m) : f.sigma * SPH_WENDLAND_ALPHA3 * ig;
 }
 
 int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]) {
+                         const struct sph_wall_element *e, double tol, double m[3]) {
   struct tri_frame f;
   frame(e, a, &f);
   if (fabs(f.delta) > SPH_GAMMA_PLANE_TOL * k->h) return 0;
   int j;
   double weight;
-  switch (classify(k, a, e, &f, &j)) {
+  switch (classify(a, e, &f, tol, &j)) {
     case VERTEX: {
       double u[3], v[3], c[3];
       for (int i = 0; i < 3; i++) {
@@ -311,7 +314,8 @@ int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,
     default:
       return 0;
   }
-  for (int i = 0; i < 3; i++) m[i] += weight * f.nu[i];
+  if (m != NULL)
+    for (int i = 0; i < 3; i++) m[i] += weight * f.nu[i];
   return 1;
 }
 

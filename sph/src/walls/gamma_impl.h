@@ -8,7 +8,7 @@
 #include "sabre/sph_walls.h"
 
 /*
- * Element term and ∇γ_as at a (see sph_gamma_element). If a lies on the element's plane (within
+ * Element term and ∇γ_as at a (see sph_gamma_element). If a lies on the element (within
  * SPH_GAMMA_PLANE_TOL·h), the term is the limit for a + ε m, ε → 0+: m is a unit direction with
  * m·n_s ≠ 0, or NULL for m = n_s.
  */
@@ -23,16 +23,17 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
                          double grad[3]);
 
 /*
- * Whether a lies on the closed element (on its plane within SPH_GAMMA_PLANE_TOL·h and within that
- * distance of the element). If so, returns 1 and adds weight·ν to m, ν the element's unit normal
- * and weight the angle of the element at a (pseudo-normal of Bærentzen & Aanæs); else returns 0.
+ * Whether a lies on the closed element: within SPH_GAMMA_PLANE_TOL·h of its plane and within tol of
+ * the element in that plane. If so, returns 1 and, if m is not NULL, adds weight·ν to m, ν the
+ * element's unit normal and weight the angle of the element at a (angle-weighted pseudo-normal of
+ * Bærentzen & Aanæs); else returns 0.
  */
 int sph_gamma1d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]);
+                         const struct sph_wall_element *e, double tol, double m[3]);
 int sph_gamma2d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]);
+                         const struct sph_wall_element *e, double tol, double m[3]);
 int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, double m[3]);
+                         const struct sph_wall_element *e, double tol, double m[3]);
 
 /* 0 if the element is non-degenerate with a unit normal perpendicular to it (1e-6), else -1. */
 int sph_gamma1d_check(const struct sph_wall_element *e);

@@ -119,7 +119,7 @@ static void test_case_errors(void **state) {
          "bad.poly:4: expected 'polygon', 'polyline', or a point");
   write_file("open.poly", "# a floor and a wall\npolyline\n0 0\n1 0\n1 1\n");
   expect(HEAD2 "  walls:\n    - {type: polyline_file, file: open.poly}\n",
-         "open.poly:3: the segment from this line: the wall is open at (0, 0)");
+         "open.poly:3: segment 1: the wall is open at (0, 0)");
   expect(HEAD2 "  walls:\n    - {type: polyline_file, file: missing.poly}\n",
          "missing.poly: cannot open");
   write_file("bad.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zero\n");

@@ -298,6 +298,10 @@ static void test_polyline_file(void **state) {
   int nopen = 0;
   for (size_t e = 0; e < m.nelem; e++) nopen += m.flags[e] & SPH_FLAG_OPEN;
   assert_int_equal(nopen, 1);
+  /* Segments numbered through the file; each knows the line of its first point. */
+  for (size_t e = 0; e < m.nelem; e++) assert_int_equal(m.source_index[e], (long)e + 1);
+  assert_int_equal(m.source_line[1], 4);
+  assert_int_equal(m.source_line[4], 9);
   sph_mesh_free(&m);
   static const struct {
     const char *text, *want;

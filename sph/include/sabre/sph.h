@@ -211,8 +211,8 @@ struct sph_mesh {
   double (*normal)[3]; /**< unit normal into the fluid per element */
   uint8_t *flags;      /**< SPH_FLAG_OPEN for open-boundary elements */
   int *source;         /**< index into sources[] */
-  long *source_index;  /**< element number within its source (from 1; 0 if none), or minus the
-                           line of a text file where it is written */
+  long *source_index;  /**< element number within its source (from 1; 0 if none) */
+  long *source_line;   /**< line of a text file where the element is written (0 if none) */
   char **sources;      /**< e.g. "geometry.walls[1] (box)" or "tank.stl" */
   int nsources;
   size_t cap_vert, cap_elem;

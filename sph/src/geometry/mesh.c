@@ -24,6 +24,7 @@ void sph_mesh_free(struct sph_mesh *m) {
   free(m->flags);
   free(m->source);
   free(m->source_index);
+  free(m->source_line);
   for (int i = 0; i < m->nsources; i++) free(m->sources[i]);
   free(m->sources);
   sph_mesh_init(m, m->dim);
@@ -96,6 +97,7 @@ size_t sph_mesh_add_element(struct sph_mesh *m, const size_t *v, double normal1d
     m->flags = cmn_realloc(m->flags, m->cap_elem * sizeof *m->flags);
     m->source = cmn_realloc(m->source, m->cap_elem * sizeof *m->source);
     m->source_index = cmn_realloc(m->source_index, m->cap_elem * sizeof *m->source_index);
+    m->source_line = cmn_realloc(m->source_line, m->cap_elem * sizeof *m->source_line);
   }
   size_t e = m->nelem++;
   for (int k = 0; k < 3; k++) m->elem[e][k] = k < m->dim ? v[k] : 0;
@@ -105,6 +107,7 @@ size_t sph_mesh_add_element(struct sph_mesh *m, const size_t *v, double normal1d
   m->flags[e] = flags;
   m->source[e] = source;
   m->source_index[e] = source_index;
+  m->source_line[e] = 0;
   return e;
 }
 
@@ -115,6 +118,7 @@ static void copy_element(struct sph_mesh *dst, const struct sph_mesh *src, size_
                                   src->source_index[e]);
   /* Children of a planar element keep the parent's exact normal. */
   memcpy(dst->normal[f], src->normal[e], sizeof dst->normal[f]);
+  dst->source_line[f] = src->source_line[e];
 }
 
 /* --------------------------------------------------------------------------------------------
@@ -375,8 +379,8 @@ static void describe(const struct sph_mesh *m, size_t e, char *buf, size_t len) 
   const char *src =
       m->source[e] >= 0 && m->source[e] < m->nsources ? m->sources[m->source[e]] : "walls";
   long idx = m->source_index[e] ? m->source_index[e] : (long)e + 1;
-  if (idx < 0)
-    snprintf(buf, len, "%s:%ld: the %s from this line", src, -idx, what);
+  if (m->source_line[e] > 0)
+    snprintf(buf, len, "%s:%ld: %s %ld", src, m->source_line[e], what, idx);
   else
     snprintf(buf, len, "%s: %s %ld", src, what, idx);
 }

@@ -25,7 +25,7 @@ struct polyline {
 
 /* Add the finished polyline to the mesh, or complain that it is too short. */
 static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int fluid_inside,
-                 int source, char *msg, size_t msglen) {
+                 int source, long *numbered, char *msg, size_t msglen) {
   if (pl->line == 0) return 0;
   size_t need = pl->closed ? 3 : 2;
   if (pl->n < need)
@@ -41,7 +41,12 @@ static int flush(struct sph_mesh *m, struct polyline *pl, const char *path, int 
   size_t e0 = m->nelem;
   sph_mesh_polygon(m, pl->n, (const double(*)[2])pl->pts, pl->closed, fluid_inside, pl->open,
                    source);
-  for (size_t e = e0; e < m->nelem; e++) m->source_index[e] = -pl->lines[e - e0];
+  /* Segments are numbered through the file (force groups select them by number); messages also
+   * give the line of the segment's first point. */
+  for (size_t e = e0; e < m->nelem; e++) {
+    m->source_index[e] = ++*numbered;
+    m->source_line[e] = pl->lines[e - e0];
+  }
   pl->n = 0;
   pl->line = 0;
   return 0;
@@ -57,6 +62,7 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
   char buf[1024];
   long line = 0;
   int rc = 0, count = 0;
+  long numbered = 0;
   while (rc == 0 && fgets(buf, sizeof buf, f)) {
     line++;
     if (!strchr(buf, '\n') && !feof(f)) {
@@ -76,7 +82,7 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
         nt = 5;
     if (nt == 0) continue;
     if (nt == 1 && (strcmp(tok[0], "polygon") == 0 || strcmp(tok[0], "polyline") == 0)) {
-      rc = flush(m, &pl, path, fluid_inside, source, msg, msglen);
+      rc = flush(m, &pl, path, fluid_inside, source, &numbered, msg, msglen);
       pl.closed = strcmp(tok[0], "polygon") == 0;
       pl.line = line;
       count++;
@@ -109,7 +115,7 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
     pl.open[pl.n++] = nt == 3;
   }
   if (rc == 0 && ferror(f)) rc = geom_fail(msg, msglen, "%s: read error", path);
-  if (rc == 0) rc = flush(m, &pl, path, fluid_inside, source, msg, msglen);
+  if (rc == 0) rc = flush(m, &pl, path, fluid_inside, source, &numbered, msg, msglen);
   if (rc == 0 && count == 0)
     rc = geom_fail(msg, msglen, "%s:%ld: no 'polygon' or 'polyline' in the file", path, line);
   free(pl.pts);

@@ -13,9 +13,17 @@ struct cmn_csv {
   int failed;
 };
 
-/* A column name needs quotes (RFC 4180) if it holds a separator, a quote or a line break. */
+/* A column name needs quotes (RFC 4180) if it holds a separator, a quote or a line break; also,
+ * for cmn_table_read() to give it back unchanged, if it starts with '#' (a comment line) or
+ * starts or ends with a blank (dropped around unquoted cells). */
+static int needs_quotes(const char *name) {
+  size_t len = strlen(name);
+  if (strpbrk(name, ",\"\r\n") != NULL || name[0] == '#') return 1;
+  return len > 0 && (strchr(" \t", name[0]) != NULL || strchr(" \t", name[len - 1]) != NULL);
+}
+
 static int write_name(FILE *out, const char *name) {
-  if (strpbrk(name, ",\"\r\n") == NULL) return fputs(name, out) < 0 ? -1 : 0;
+  if (!needs_quotes(name)) return fputs(name, out) < 0 ? -1 : 0;
   if (fputc('"', out) == EOF) return -1;
   for (const char *p = name; *p != '\0'; ++p) {
     if (*p == '"' && fputc('"', out) == EOF) return -1;

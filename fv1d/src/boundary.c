@@ -19,22 +19,8 @@ double fv1d_signal_eval(const struct fv1d_signal *sig, double t) {
       double w = (t - sig->t_start) / sig->duration;
       return sig->start + w * (sig->value - sig->start);
     }
-    case FV1D_SIGNAL_TABLE: {
-      const size_t n = sig->ntable;
-      const double *tt = sig->table_t, *v = sig->table_v;
-      if (t <= tt[0]) return v[0];
-      if (t >= tt[n - 1]) return v[n - 1];
-      size_t lo = 0, hi = n - 1; /* bisection: tt[lo] ≤ t < tt[hi] */
-      while (hi - lo > 1) {
-        size_t mid = (lo + hi) / 2;
-        if (tt[mid] <= t)
-          lo = mid;
-        else
-          hi = mid;
-      }
-      double w = (t - tt[lo]) / (tt[hi] - tt[lo]);
-      return v[lo] + w * (v[hi] - v[lo]);
-    }
+    case FV1D_SIGNAL_TABLE: /* constant beyond the ends of the table */
+      return cmn_interp_linear(sig->ntable, sig->table_t, sig->table_v, 1, t);
   }
   return NAN;
 }

@@ -1,6 +1,5 @@
 /* Case-file reading (common/ getters on libyaml): every key of docs/fv1d.md with its default and
  * range; non-physical values and inconsistent keys are reported with the key's name. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,62 +55,26 @@ void fv1d_params_free(struct fv1d_params *p) {
   p->noutput = 0;
 }
 
-/* Read a numeric CSV table with a header line naming exactly the `ncols` expected columns.
- * Returns the number of rows (≥ 1) or -1 with a message in err. */
+/* Read a table file (common/ format: docs/case-files.md) whose header must be exactly `names`
+ * (docs/fv1d.md) and whose first column, the interpolation abscissa, must increase strictly.
+ * The columns are copied into cols[0..ncols-1] (allocated, owned by the caller). Returns the
+ * number of rows (≥ 1), or -1 with a message naming the file and line in err. */
 static long read_table(const char *path, int ncols, const char *const *names, double **cols,
                        char *err, size_t errlen) {
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    snprintf(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+  struct cmn_table t;
+  if (cmn_table_read(path, &t, err, errlen) != 0) return -1;
+  if (cmn_table_expect_columns(&t, ncols, names, err, errlen) != 0 ||
+      cmn_table_check_increasing(&t, 0, err, errlen) != 0) {
+    cmn_table_free(&t);
     return -1;
   }
-  char line[4096];
-  long rows = 0, cap = 0, lineno = 0;
-  for (int k = 0; k < ncols; ++k) cols[k] = NULL;
-  if (!fgets(line, sizeof line, f)) {
-    snprintf(err, errlen, "'%s' is empty (expected a header line)", path);
-    goto fail;
+  for (int k = 0; k < ncols; ++k) {
+    cols[k] = cmn_malloc(t.nrows * sizeof(double));
+    for (size_t i = 0; i < t.nrows; ++i) cols[k][i] = t.data[i * (size_t)ncols + (size_t)k];
   }
-  ++lineno;
-  { /* header check */
-    char *save = NULL, *tok = strtok_r(line, ",\r\n", &save);
-    for (int k = 0; k < ncols; ++k, tok = strtok_r(NULL, ",\r\n", &save)) {
-      while (tok && *tok == ' ') ++tok;
-      if (!tok || strcmp(tok, names[k]) != 0) {
-        snprintf(err, errlen, "'%s': the header must be '%s%s%s%s%s'", path, names[0],
-                 ncols > 1 ? "," : "", ncols > 1 ? names[1] : "", ncols > 2 ? "," : "",
-                 ncols > 2 ? names[2] : "");
-        goto fail;
-      }
-    }
-  }
-  while (fgets(line, sizeof line, f)) {
-    ++lineno;
-    if (strspn(line, " \t\r\n") == strlen(line)) continue;
-    if (rows == cap) {
-      cap = cap ? 2 * cap : 64;
-      for (int k = 0; k < ncols; ++k) cols[k] = cmn_realloc(cols[k], (size_t)cap * sizeof(double));
-    }
-    char *save = NULL, *tok = strtok_r(line, ",\r\n", &save);
-    for (int k = 0; k < ncols; ++k, tok = strtok_r(NULL, ",\r\n", &save)) {
-      if (!tok || cmn_parse_double(tok, &cols[k][rows]) != 0) {
-        snprintf(err, errlen, "'%s' line %ld: expected %d numbers", path, lineno, ncols);
-        goto fail;
-      }
-    }
-    ++rows;
-  }
-  fclose(f);
-  if (rows < 1) {
-    snprintf(err, errlen, "'%s' has no data rows", path);
-    for (int k = 0; k < ncols; ++k) free(cols[k]), cols[k] = NULL;
-    return -1;
-  }
+  long rows = (long)t.nrows;
+  cmn_table_free(&t);
   return rows;
-fail:
-  fclose(f);
-  for (int k = 0; k < ncols; ++k) free(cols[k]), cols[k] = NULL;
-  return -1;
 }
 
 static void resolve_path(const char *base_dir, const char *file, char *out, size_t outlen) {
@@ -119,12 +82,6 @@ static void resolve_path(const char *base_dir, const char *file, char *out, size
     snprintf(out, outlen, "%s", file);
   else
     snprintf(out, outlen, "%s/%s", base_dir, file);
-}
-
-static int strictly_increasing(const double *v, size_t n) {
-  for (size_t k = 1; k < n; ++k)
-    if (!(v[k] > v[k - 1])) return 0;
-  return 1;
 }
 
 static int read_domain(struct cmn_case *c, struct fv1d_params *p) {
@@ -216,8 +173,6 @@ static int read_initial(struct cmn_case *c, const char *base_dir, struct fv1d_pa
     if (rows < 0) return cmn_case_fail(c, "initial.table", "%s", err);
     ini->ntable = (size_t)rows;
     ini->table_x = cols[0], ini->table_rho = cols[1], ini->table_u = cols[2];
-    if (!strictly_increasing(ini->table_x, ini->ntable))
-      return cmn_case_fail(c, "initial.table", "x must be strictly increasing in '%s'", path);
   }
   int nreg = cmn_case_seq_length(c, "initial.regions");
   if (nreg < 0) return -1;
@@ -314,8 +269,6 @@ static int read_signal(struct cmn_case *c, const char *base_dir, const char *sid
       if (rows < 0) return cmn_case_fail(c, key, "%s", err);
       sig->ntable = (size_t)rows;
       sig->table_t = cols[0], sig->table_v = cols[1];
-      if (!strictly_increasing(sig->table_t, sig->ntable))
-        return cmn_case_fail(c, key, "t must be strictly increasing in '%s'", path);
       lo = hi = sig->table_v[0];
       for (size_t k = 0; k < sig->ntable; ++k)
         lo = fmin(lo, sig->table_v[k]), hi = fmax(hi, sig->table_v[k]);

@@ -49,27 +49,13 @@ const struct fv1d_boundary_state *fv1d_solver_boundary(const struct fv1d_solver 
   return &s->bnd[side != 0];
 }
 
-static double table_interp(size_t n, const double *xs, const double *vs, double x) {
-  if (x <= xs[0]) return vs[0];
-  if (x >= xs[n - 1]) return vs[n - 1];
-  size_t lo = 0, hi = n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (xs[mid] <= x)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return vs[lo] + (x - xs[lo]) / (xs[hi] - xs[lo]) * (vs[hi] - vs[lo]);
-}
-
 void fv1d_initial_point(const struct fv1d_params *p, double x, double *rho, double *u) {
   const struct fv1d_initial *ini = &p->initial;
   *rho = ini->rho;
   *u = ini->u;
   if (ini->ntable > 0) {
-    *rho = table_interp(ini->ntable, ini->table_x, ini->table_rho, x);
-    *u = table_interp(ini->ntable, ini->table_x, ini->table_u, x);
+    *rho = cmn_interp_linear(ini->ntable, ini->table_x, ini->table_rho, 1, x);
+    *u = cmn_interp_linear(ini->ntable, ini->table_x, ini->table_u, 1, x);
   }
   if (ini->rho_expr) *rho = fv1d_expr_eval(ini->rho_expr, x);
   if (ini->p_expr) *rho = rmn_eos_density(&p->eos, fv1d_expr_eval(ini->p_expr, x));

@@ -5,7 +5,8 @@
  *      the file, line and expected type, documented defaults written back into the tree (so the
  *      resolved parameters can be saved as used_case.yaml), `--set key=value` overrides, and a
  *      final check that every key of the file was used (a typo must not fall back to a default);
- *   3. CSV writing (full double precision) and progress lines with ETA on stderr.
+ *   3. CSV writing (full double precision), CSV table reading (numeric tables with a header, and
+ *      linear interpolation in them), and progress lines with ETA on stderr.
  *
  * This layer belongs to the applications: unlike riemann/, its fatal helpers may exit.
  */
@@ -39,8 +40,8 @@ _Noreturn void cmn_input_error(const char *fmt, ...) __attribute__((format(print
 /** Internal or run failure with source location; exit(CMN_EXIT_FAILURE). Use via cmn_error(). */
 _Noreturn void cmn_fatal_at(const char *file, const char *func, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
-#define cmn_error(...)                                      \
-  do {                                                      \
+#define cmn_error(...)                                       \
+  do {                                                       \
     cmn_fatal_at(__FILE__, __func__, __LINE__, __VA_ARGS__); \
   } while (0)
 
@@ -171,14 +172,77 @@ int cmn_csv_flush(struct cmn_csv *csv);
 int cmn_csv_close(struct cmn_csv *csv);
 
 /* ---------------------------------------------------------------------------------------------
+ * CSV tables (input): time tables of imposed values, initial profiles, probe lists.
+ *
+ * The format is the one cmn_csv_open()/cmn_csv_row() write (docs/case-files.md, "Table files"):
+ *   - blank lines, and lines whose first non-blank character is '#', are skipped anywhere;
+ *   - the first other line is the header: ncols ≥ 1 comma-separated column names, non-empty and
+ *     distinct; a name may be quoted as in RFC 4180 ("u, m/s", "say ""hi""");
+ *   - every later line is a row of exactly ncols finite numbers (as for case-file numbers:
+ *     decimal or exponent notation, no nan/inf, nothing that overflows); blanks around a cell are
+ *     ignored; there is at least one row.
+ * Lines end in LF or CRLF; a UTF-8 byte-order mark is skipped.
+ *
+ * Errors name the file, the line and, for a cell, the column (1-based) and its name:
+ *   tab.csv:7: column 2 ('p'): expected a number, got 'abc'
+ *   tab.csv:9: expected 3 cells as in the header (line 2), got 2
+ * ------------------------------------------------------------------------------------------- */
+struct cmn_table {
+  char *path;       /**< file name as given to cmn_table_read(), for messages */
+  int ncols;        /**< number of columns (≥ 1) */
+  size_t nrows;     /**< number of data rows (≥ 1) */
+  char **names;     /**< the ncols column names, unquoted */
+  double *data;     /**< nrows × ncols values, row-major: row i, column j at data[i * ncols + j] */
+  long *lines;      /**< file line (1-based) of each row, for messages about a row */
+  long header_line; /**< file line of the header */
+};
+
+/**
+ * Read a table file into *t, which is overwritten without being freed (everything allocated is
+ * then owned by *t: release with cmn_table_free()). Returns 0, or -1 with *t left empty (safe to
+ * free) and, if err != NULL, a message in err (size errlen): the file cannot be opened or read,
+ * holds a NUL byte, has no header or no data row, an empty or duplicate column name, an unclosed
+ * quote, a header of numbers only (missing header), a cell that is not a finite number, or a ragged
+ * row. Allocation failure exits (cmn_malloc).
+ */
+int cmn_table_read(const char *path, struct cmn_table *t, char *err, size_t errlen);
+/** Free what *t owns and zero it. NULL accepted; an emptied table too. */
+void cmn_table_free(struct cmn_table *t);
+/** Index (0-based) of the column called `name`, or -1 if there is none. */
+int cmn_table_column(const struct cmn_table *t, const char *name);
+/**
+ * Check that the header is exactly `names[0..ncols-1]`, in this order. Returns 0, or -1 with
+ * "tab.csv:1: the header must be 't,value', got 'time,value'" in err (if err != NULL).
+ */
+int cmn_table_expect_columns(const struct cmn_table *t, int ncols, const char *const *names,
+                             char *err, size_t errlen);
+/**
+ * Check that column `col` increases strictly from row to row (an interpolation abscissa).
+ * Returns 0, or -1 with "tab.csv:5: column 1 ('t'): values must increase strictly, got 0.5 after
+ * 0.5 (line 4)" in err (if err != NULL).
+ */
+int cmn_table_check_increasing(const struct cmn_table *t, int col, char *err, size_t errlen);
+
+/**
+ * Piecewise-linear interpolation through the n ≥ 1 nodes (x[k·stride], y[k·stride]), k < n,
+ * with x strictly increasing (cmn_table_check_increasing): y(xq) on [x_0, x_{n-1}], exactly y_k
+ * at a node, and the end value beyond either end (constant extrapolation). Units are those of y.
+ * stride = 1 for plain arrays, ncols for two columns of a table. Returns NaN if xq is NaN or
+ * n == 0. O(log n), no allocation.
+ */
+double cmn_interp_linear(size_t n, const double *x, const double *y, size_t stride, double xq);
+/** cmn_interp_linear() on columns xcol (abscissa, strictly increasing) and ycol of a table. */
+double cmn_table_interp(const struct cmn_table *t, int xcol, int ycol, double x);
+
+/* ---------------------------------------------------------------------------------------------
  * Progress on stderr: "step 1200  t = 0.1234 s  dt = 1.2e-05 s  N = 40000  ETA 00:01:23"
  * ------------------------------------------------------------------------------------------- */
 struct cmn_progress {
-  double t_start, t_end;  /**< simulated time span [s] */
-  double wall_start;      /**< wall clock at start [s] */
-  double wall_last;       /**< wall clock of the last report [s] */
-  double interval;        /**< minimal wall seconds between reports (default 1) */
-  int enabled;            /**< 0 silences reports */
+  double t_start, t_end; /**< simulated time span [s] */
+  double wall_start;     /**< wall clock at start [s] */
+  double wall_last;      /**< wall clock of the last report [s] */
+  double interval;       /**< minimal wall seconds between reports (default 1) */
+  int enabled;           /**< 0 silences reports */
 };
 /** Wall clock in seconds (monotonic). */
 double cmn_wall_time(void);

@@ -20,6 +20,7 @@
 #define STENCIL_REACH_MAX 16
 
 static const char *const axis_name = "xyz";
+static const char *const kind_name[SPH_NKINDS] = {"fluid", "vertex", "segment"};
 
 void sph_cells_free(struct sph_cells *c) {
   for (int k = 0; k < SPH_NKINDS; k++) {
@@ -84,11 +85,8 @@ void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cel
       for (size_t i = 0; i < p->n; i++) {
         double x = p->x[a][i];
         if (!isfinite(x))
-          cmn_error("%s particle %zu (id %lld) has a non-finite position",
-                    k == 0   ? "fluid"
-                    : k == 1 ? "vertex"
-                             : "segment",
-                    i, (long long)p->id[i]);
+          cmn_error("%s particle %zu (id %lld) has a non-finite position", kind_name[k], i,
+                    (long long)p->id[i]);
         if (x < c->domain.lo[a]) c->domain.lo[a] = x;
         if (x > c->domain.hi[a]) c->domain.hi[a] = x;
       }

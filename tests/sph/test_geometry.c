@@ -290,7 +290,7 @@ static void test_fill_3d_stl_tank(void **state) {
   build(
       "geometry:\n  dimension: 3\n  dr: 0.05\n  walls:\n"
       "    - {type: stl, file: tank.stl}\n"
-      "  fluid:\n    - {type: box, lo: [-0.5, -0.5, -0.5], hi: [1.5, 1.5, 1.5]}\n",
+      "  fluid:\n    - {type: box, lo: [-0.4, -0.4, -0.4], hi: [1.0, 1.0, 1.0]}\n",
       &g, &s);
   assert_int_equal(s.part[SPH_KIND_FLUID].n, 12 * 10 * 8);
   for (size_t i = 0; i < s.part[SPH_KIND_FLUID].n; i++)

@@ -192,6 +192,25 @@ static void test_step_wedge(void **state) {
   sph_geometry_free(&g);
 }
 
+/* Regions that never come near a wall: one far inside the tank is filled, one far outside is not
+ * (their side comes from the nearest of all the walls). */
+static void test_fill_far_regions(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
+      "    - {type: wedge, apex: [0, 0], angle: 90, length: 10, direction: 90}\n"
+      "  fluid:\n    - {type: box, lo: [-0.5, 4], hi: [0.5, 5]}\n"
+      "    - {type: box, lo: [5, 1], hi: [6, 2]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 100);
+  for (size_t i = 0; i < s.part[SPH_KIND_FLUID].n; i++)
+    assert_true(s.part[SPH_KIND_FLUID].x[1][i] > 4);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 /* Periodic channel: the walls close across x, the seam vertices exist once. */
 static void test_channel_periodic(void **state) {
   (void)state;
@@ -307,7 +326,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_box_2d),           cmocka_unit_test(test_fill_2d_polygons),
       cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
-      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl),
-      cmocka_unit_test(test_fill_3d_stl_tank)};
+      cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_interval_1d),
+      cmocka_unit_test(test_fill_3d_stl),      cmocka_unit_test(test_fill_3d_stl_tank)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

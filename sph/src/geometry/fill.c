@@ -89,13 +89,13 @@ static double corner_angle(const double v[3][3], int k) {
  * normals of the elements at minimal distance, angle-weighted at a 3D vertex), which is correct at
  * edges and vertices of a closed mesh (Bærentzen & Aanæs 2005).
  */
-static int wall_side(const struct sph_system *t, const struct sph_nlist *nl, size_t i,
-                     const double *x, double *dist) {
+static int wall_side(const struct sph_system *t, const size_t *cand, size_t ncand, const double *x,
+                     double *dist) {
   int dim = t->dim;
   double dmin = INFINITY, qmin[3] = {0, 0, 0};
-  for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
+  for (size_t k = 0; k < ncand; k++) {
     double v[3][3], q[3];
-    sph_segment_vertices(t, nl->index[k], x, v);
+    sph_segment_vertices(t, cand[k], x, v);
     double d = sph_element_distance(dim, v, x, q);
     if (d < dmin) {
       dmin = d;
@@ -105,8 +105,8 @@ static int wall_side(const struct sph_system *t, const struct sph_nlist *nl, siz
   *dist = dmin;
   double tol = 1e-9 * dmin + 1e-12 * t->dr, n[3] = {0, 0, 0};
   const struct sph_parts *ps = &t->part[SPH_KIND_SEGMENT];
-  for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
-    size_t j = nl->index[k];
+  for (size_t k = 0; k < ncand; k++) {
+    size_t j = cand[k];
     double v[3][3], q[3];
     sph_segment_vertices(t, j, x, v);
     if (sph_element_distance(dim, v, x, q) > dmin + tol) continue;
@@ -120,6 +120,26 @@ static int wall_side(const struct sph_system *t, const struct sph_nlist *nl, siz
   double side = 0;
   for (int a = 0; a < 3; a++) side += (x[a] - qmin[a]) * n[a];
   return side > 0;
+}
+
+/* Breadth-first along lattice edges (n[0] x n[1] x n[2] points): unknown sides (−1) take the side
+ * of the queued points' neighbours. */
+static void propagate(signed char *side, const long *n, int dim, size_t *queue, size_t tail) {
+  for (size_t head = 0; head < tail;) {
+    size_t i = queue[head++], stride = 1;
+    for (int a = 0; a < dim; a++) {
+      long c = (long)(i / stride % (size_t)n[a]);
+      if (c > 0 && side[i - stride] < 0) {
+        side[i - stride] = side[i];
+        queue[tail++] = i - stride;
+      }
+      if (c + 1 < n[a] && side[i + stride] < 0) {
+        side[i + stride] = side[i];
+        queue[tail++] = i + stride;
+      }
+      stride *= (size_t)n[a];
+    }
+  }
 }
 
 size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
@@ -172,28 +192,29 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
     for (size_t i = 0; i < total; i++) {
       double x[3] = {pc->x[0][i], pc->x[1][i], pc->x[2][i]};
       dist[i] = INFINITY;
-      side[i] =
-          nl.offset[i] == nl.offset[i + 1] ? -1 : (signed char)wall_side(&t, &nl, i, x, &dist[i]);
+      side[i] = nl.offset[i] == nl.offset[i + 1]
+                    ? -1
+                    : (signed char)wall_side(&t, nl.index + nl.offset[i],
+                                             nl.offset[i + 1] - nl.offset[i], x, &dist[i]);
     }
-    /* Far points: breadth-first from the points whose side is known, along lattice edges. */
-    size_t *queue = cmn_malloc(total * sizeof *queue), head = 0, tail = 0;
+    /* Far points take the side of their lattice neighbours. A part of the lattice with no point
+     * near a wall (a region far inside, or wrongly far outside, the walls) gets the side of one of
+     * its points from the nearest of all the walls. */
+    size_t *queue = cmn_malloc(total * sizeof *queue), tail = 0;
     for (size_t i = 0; i < total; i++)
       if (side[i] >= 0) queue[tail++] = i;
-    while (head < tail) {
-      size_t i = queue[head++], stride = 1;
-      for (int a = 0; a < dim; a++) {
-        long c = (long)(i / stride % (size_t)n[a]);
-        if (c > 0 && side[i - stride] < 0) {
-          side[i - stride] = side[i];
-          queue[tail++] = i - stride;
-        }
-        if (c + 1 < n[a] && side[i + stride] < 0) {
-          side[i + stride] = side[i];
-          queue[tail++] = i + stride;
-        }
-        stride *= (size_t)n[a];
-      }
+    propagate(side, n, dim, queue, tail);
+    size_t nseg = t.part[SPH_KIND_SEGMENT].n;
+    size_t *all = cmn_malloc((nseg + 1) * sizeof *all);
+    for (size_t j = 0; j < nseg; j++) all[j] = j;
+    for (size_t i = 0; i < total && nseg > 0; i++) {
+      if (side[i] >= 0) continue;
+      double x[3] = {pc->x[0][i], pc->x[1][i], pc->x[2][i]}, d;
+      side[i] = (signed char)wall_side(&t, all, nseg, x, &d);
+      queue[0] = i;
+      propagate(side, n, dim, queue, 1);
     }
+    free(all);
     free(queue);
     uint8_t *drop = cmn_malloc(total);
     double dmin = g->min_wall_distance - 1e-9 * dr;

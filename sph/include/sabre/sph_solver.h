@@ -237,10 +237,11 @@ void sph_solver_diagnostics(const struct sph_solver *sv, struct sph_diagnostics 
 double sph_internal_energy(const struct rmn_eos *eos, double rho);
 /** Shepard-interpolated pressure at point x (fluid particles) [Pa]; NaN when no fluid is near. */
 double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x);
-/** Free-surface elevation at the horizontal position x (along −g) [m]; NaN when no fluid. */
+/** Free-surface elevation above the horizontal position of x (along −g): the highest fluid
+ *  particle within h of the vertical line, plus Δr/2 [m]; NaN when there is none. */
 double sph_solver_gauge(const struct sph_solver *sv, const double *x);
-/** Force of the fluid on each force group [N] (pressure and viscous wall terms, vertices' volume
- *  terms), out[group][3]. */
+/** Force of the fluid on each force group [N], out[group][3]: pressure −Σ_s p_s |s| n_s over the
+ *  group's segments, plus the reaction to the viscous wall terms of Lap^γ (M 19–20). */
 void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]);
 /** Skew-adjoint defect M(27): <Grad^{γ,k} f, B> + <f, Div^{γ,k} B> over the fluid (V_a weights). */
 double sph_skew_adjoint_defect(const struct sph_solver *sv, const double *const f[SPH_NKINDS],

@@ -65,7 +65,8 @@ double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x) {
 }
 
 double sph_solver_gauge(const struct sph_solver *sv, const double *x) {
-  /* Highest fluid particle (along −g) within Δr/2 of the gauge's vertical line, plus Δr/2. */
+  /* Highest fluid particle (along −g) within h of the gauge's vertical line, plus Δr/2 (h: at
+   * least one particle of the top layer is always that close, even when the layer shifts). */
   const struct sph_system *s = &sv->sys;
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double *g = sv->cfg.gravity;
@@ -79,7 +80,7 @@ double sph_solver_gauge(const struct sph_solver *sv, const double *x) {
     double dz = d[0] * up[0] + d[1] * up[1] + d[2] * up[2];
     double lat2 = 0.0;
     for (int c = 0; c < 3; c++) lat2 += (d[c] - dz * up[c]) * (d[c] - dz * up[c]);
-    if (lat2 > 0.25 * s->dr * s->dr) continue;
+    if (lat2 > s->h * s->h) continue;
     top = fmax(top, xb[0] * up[0] + xb[1] * up[1] + xb[2] * up[2]);
   }
   return isfinite(top) ? top + 0.5 * s->dr : NAN;
@@ -90,39 +91,39 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
   const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nlv = &sv->nb.list[SPH_KIND_VERTEX], *nls = &sv->nb.list[SPH_KIND_SEGMENT];
-  const double k = sv->cfg.grad_k;
   for (int g = 0; g < sv->cfg.nforces; g++) out[g][0] = out[g][1] = out[g][2] = 0.0;
-  /* Minus the wall contributions to m_a dv_a/dt of sph_solver_forces(), per group. */
+  /* Pressure: the integral of the segment pressure over the group, −Σ_s p_s |s| n_s (M §8). The
+   * momentum equation's pressure terms are not used: with γ_a ≠ 1 the fluid–fluid pair terms do
+   * not cancel near walls, so their wall parts alone would not be the force on the wall. */
+  for (size_t j = 0; j < sg->n; j++) {
+    int g = sv->seg_group[j];
+    if (g < 0) continue;
+    const double ps = sv->p[SPH_KIND_SEGMENT][j] * sg->measure[j];
+    for (int c = 0; c < 3; c++) out[g][c] -= ps * sg->normal[c][j];
+  }
+  if (!(sv->cfg.nu > 0.0)) return;
+  /* Shear: minus the wall contributions of Lap^γ to Σ m_a dv_a/dt (the wall shear stress of
+   * M 19–20 on the segments, and the vertices' volume terms). */
   for (size_t a = 0; a < f->n; a++) {
-    const double rho_a = f->rho[a], pa = sv->p[SPH_KIND_FLUID][a];
-    const double fac = f->mass[a] / (rho_a * f->gamma[a]);
+    const double fac = f->mass[a] / (f->rho[a] * f->gamma[a]);
     const double mua = sv->mu[SPH_KIND_FLUID][a];
     for (size_t q = nlv->offset[a]; q < nlv->offset[a + 1]; q++) {
       size_t b = nlv->index[q];
       int g = sv->vert_group[b];
       struct sph_pair pr;
-      if (g < 0 || !sph_pair_eval(&sv->kernel, s, f, a, v, b, &pr)) continue;
-      const double vb = v->mass[b] / v->rho[b], ratio = sph_rho_ratio_k(rho_a, v->rho[b], k);
-      const double tp = vb * (ratio * sv->p[SPH_KIND_VERTEX][b] + pa / ratio) * pr.dwdr_over_r;
+      if (g < 0 || !sph_pair_eval(&sv->kernel, s, f, a, v, b, &pr) || pr.dist == 0.0) continue;
       const double mub = sv->mu[SPH_KIND_VERTEX][b];
       const double bbar = mua + mub > 0 ? 2.0 * mua * mub / (mua + mub) : 0.0;
-      const double tv = pr.dist > 0 ? vb * 2.0 * bbar * pr.dwdr_over_r : 0.0;
-      for (int c = 0; c < 3; c++)
-        out[g][c] -= fac * (-tp * pr.r[c] + tv * (f->v[c][a] - v->v[c][b]));
+      const double tv = v->mass[b] / v->rho[b] * 2.0 * bbar * pr.dwdr_over_r;
+      for (int c = 0; c < 3; c++) out[g][c] -= fac * tv * (f->v[c][a] - v->v[c][b]);
     }
     for (size_t q = nls->offset[a]; q < nls->offset[a + 1]; q++) {
-      size_t j = nls->index[q];
-      int g = sv->seg_group[j];
+      int g = sv->seg_group[nls->index[q]];
       if (g < 0) continue;
-      const double ratio = sph_rho_ratio_k(rho_a, sg->rho[j], k);
-      const double tp = ratio * sv->p[SPH_KIND_SEGMENT][j] + pa / ratio;
       double mag = 0.0;
       for (int c = 0; c < 3; c++) mag += sv->nb.grad_gamma_as[c][q] * sv->nb.grad_gamma_as[c][q];
       mag = sqrt(mag);
-      for (int c = 0; c < 3; c++) {
-        double visc = sv->cfg.nu > 0.0 ? -sv->wall_flux[c][q] * mag : 0.0;
-        out[g][c] -= fac * (tp * sv->nb.grad_gamma_as[c][q] + visc);
-      }
+      for (int c = 0; c < 3; c++) out[g][c] += fac * sv->wall_flux[c][q] * mag;
     }
   }
 }

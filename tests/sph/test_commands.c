@@ -6,56 +6,31 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "testutil.h"
-
-static char tmpdir[64];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-cmd-XXXXXX");
-  return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  (void)state;
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-  return system(cmd) == 0 ? 0 : -1;
-}
+/* testutil.h first */
+#include "sph_testfiles.h"
 
 static char out[1 << 16];
 
+struct invocation {
+  int (*cmd)(int, char **);
+  const char *const *argv;
+};
+
+static int invoke(void *arg) {
+  const struct invocation *inv = arg;
+  int argc = 0;
+  while (inv->argv[argc]) argc++;
+  return inv->cmd(argc, (char **)inv->argv);
+}
+
 /* Run a command (NULL-terminated argv, argv[0] its name); stdout+stderr into `out`. */
 static int run(int (*cmd)(int, char **), const char *const *argv) {
-  int argc = 0;
-  while (argv[argc]) argc++;
-  int fd[2];
-  assert_int_equal(pipe(fd), 0);
-  fflush(NULL);
-  pid_t pid = fork();
-  assert_true(pid >= 0);
-  if (pid == 0) {
-    close(fd[0]);
-    dup2(fd[1], 1);
-    dup2(fd[1], 2);
-    int rc = cmd(argc, (char **)argv);
-    fflush(NULL);
-    _exit(rc);
-  }
-  close(fd[1]);
-  size_t n = 0;
-  ssize_t got;
-  while ((got = read(fd[0], out + n, sizeof out - 1 - n)) > 0) n += (size_t)got;
-  out[n] = '\0';
-  close(fd[0]);
-  int status;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  struct invocation inv = {cmd, argv};
+  return test_capture(invoke, &inv, out, sizeof out);
 }
 
 /* Parse line `k` (0-based) of `out` as {"at": [...], "gamma": g, "grad_gamma": [...]}. */
@@ -121,8 +96,8 @@ static void test_gamma_box_vs_stl(void **state) {
   sph_mesh_init(&m, 3);
   sph_mesh_box(&m, (double[]){0, 0, 0}, (double[]){1, 1, 1}, 1.0, 0, 0,
                sph_mesh_add_source(&m, "cube"));
-  char stl[128];
-  snprintf(stl, sizeof stl, "%s/cube.stl", tmpdir);
+  char stl[256];
+  snprintf(stl, sizeof stl, "%s", test_path("cube.stl"));
   assert_int_equal(sph_mesh_write_stl(&m, stl, 1), 0);
   sph_mesh_free(&m);
   const char *pts[] = {"0.5,0.5,0.5", "0.31,0.47,0.06", "0.03,0.04,0.05", "1,0.5,0.5", NULL};
@@ -158,8 +133,8 @@ static void test_gamma_obstacle(void **state) {
   sph_mesh_init(&m, 3);
   sph_mesh_box(&m, (double[]){0.3, 0.3, 0.3}, (double[]){0.7, 0.7, 0.7}, 0.2, 0, 0,
                sph_mesh_add_source(&m, "obstacle"));
-  char stl[128];
-  snprintf(stl, sizeof stl, "%s/obstacle.stl", tmpdir);
+  char stl[256];
+  snprintf(stl, sizeof stl, "%s", test_path("obstacle.stl"));
   assert_int_equal(sph_mesh_write_stl(&m, stl, 0), 0);
   sph_mesh_free(&m);
   const char *argv[] = {"gamma",
@@ -226,55 +201,34 @@ static void test_gamma_errors(void **state) {
 
 static void test_mesh_command(void **state) {
   (void)state;
-  char case_path[128], dir[128], path[256];
-  snprintf(case_path, sizeof case_path, "%s/tank.yaml", tmpdir);
-  snprintf(dir, sizeof dir, "%s/out/mesh", tmpdir);
-  FILE *f = fopen(case_path, "w");
-  fputs(
+  const char *geometry =
       "geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
       "    - {type: box, lo: [0, 0], hi: [1, 0.8]}\n"
-      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.5]}\n",
-      f);
-  fclose(f);
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.5]}\n";
+  char case_path[256];
+  snprintf(case_path, sizeof case_path, "%s", test_write("tank.yaml", geometry));
+  char dir[256];
+  snprintf(dir, sizeof dir, "%s", test_path("out/mesh"));
   const char *argv[] = {"mesh", case_path, "--output", dir, "--set", "geometry.dr=0.05", NULL};
   assert_int_equal(run(sph_cmd_mesh, argv), 0);
   assert_non_null(strstr(out, "200 fluid, 72 vertex, 72 segment particles"));
-  snprintf(path, sizeof path, "%s/mesh.pvd", dir);
-  f = fopen(path, "r");
-  assert_non_null(f);
-  char pvd[2048] = "";
-  assert_true(fread(pvd, 1, sizeof pvd - 1, f) > 0);
-  fclose(f);
-  assert_non_null(strstr(pvd, "part=\"0\" file=\"fluid_000000.vtu\""));
-  assert_non_null(strstr(pvd, "part=\"1\" file=\"boundary_000000.vtu\""));
-  snprintf(path, sizeof path, "%s/fluid_000000.vtu", dir);
-  f = fopen(path, "rb");
-  assert_non_null(f);
-  char head[4096] = "";
-  assert_true(fread(head, 1, sizeof head - 1, f) > 0);
-  fclose(f);
-  assert_non_null(strstr(head, "NumberOfPoints=\"200\" NumberOfCells=\"200\""));
-  assert_non_null(strstr(head, "Name=\"gamma\""));
-  assert_non_null(strstr(head, "Name=\"grad_gamma\" NumberOfComponents=\"3\""));
-  snprintf(path, sizeof path, "%s/boundary_000000.vtu", dir);
-  f = fopen(path, "rb");
-  assert_non_null(f);
-  assert_true(fread(head, 1, sizeof head - 1, f) > 0);
-  fclose(f);
-  assert_non_null(strstr(head, "NumberOfPoints=\"72\" NumberOfCells=\"72\""));
-  assert_non_null(strstr(head, "<CellData>"));
-  snprintf(path, sizeof path, "%s/used_case.yaml", dir);
-  f = fopen(path, "r");
-  assert_non_null(f);
-  char used[2048] = "";
-  assert_true(fread(used, 1, sizeof used - 1, f) > 0);
-  fclose(f);
-  assert_non_null(strstr(used, "dr: 0.05"));
-  assert_non_null(strstr(used, "h_over_dr:"));
+  char text[4096];
+  test_read("out/mesh/mesh.pvd", text, sizeof text);
+  assert_non_null(strstr(text, "part=\"0\" file=\"fluid_000000.vtu\""));
+  assert_non_null(strstr(text, "part=\"1\" file=\"boundary_000000.vtu\""));
+  test_read("out/mesh/fluid_000000.vtu", text, sizeof text);
+  assert_non_null(strstr(text, "NumberOfPoints=\"200\" NumberOfCells=\"200\""));
+  assert_non_null(strstr(text, "Name=\"gamma\""));
+  assert_non_null(strstr(text, "Name=\"grad_gamma\" NumberOfComponents=\"3\""));
+  test_read("out/mesh/boundary_000000.vtu", text, sizeof text);
+  assert_non_null(strstr(text, "NumberOfPoints=\"72\" NumberOfCells=\"72\""));
+  assert_non_null(strstr(text, "<CellData>"));
+  test_read("out/mesh/used_case.yaml", text, sizeof text);
+  assert_non_null(strstr(text, "dr: 0.05"));
+  assert_non_null(strstr(text, "h_over_dr:"));
   /* A run case (solver sections next to geometry) is accepted, and its sections are checked. */
-  f = fopen(case_path, "a");
-  fputs("fluid: {rho0: 1000, c0: 20}\ntime: {end: 0.5}\n", f);
-  fclose(f);
+  snprintf(text, sizeof text, "%sfluid: {rho0: 1000, c0: 20}\ntime: {end: 0.5}\n", geometry);
+  test_write("tank.yaml", text);
   const char *full[] = {"mesh", case_path, "--output", dir, NULL};
   assert_int_equal(run(sph_cmd_mesh, full), 0);
   const char *bad_solver[] = {"mesh", case_path, "--output", dir, "--set", "fluid.rh0=1", NULL};
@@ -291,5 +245,5 @@ int main(void) {
       cmocka_unit_test(test_gamma_2d), cmocka_unit_test(test_gamma_box_vs_stl),
       cmocka_unit_test(test_gamma_obstacle), cmocka_unit_test(test_gamma_errors),
       cmocka_unit_test(test_mesh_command)};
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

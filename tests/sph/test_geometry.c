@@ -10,25 +10,12 @@
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "testutil.h"
-
-static char tmpdir[64];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-geom-XXXXXX");
-  return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  (void)state;
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-  return system(cmd) == 0 ? 0 : -1;
-}
+/* testutil.h first */
+#include "sph_testfiles.h"
 
 static void build(const char *yaml, struct sph_geometry *g, struct sph_system *s) {
-  char name[128], err[512];
-  snprintf(name, sizeof name, "%s/case.yaml", tmpdir);
+  char name[256], err[512];
+  snprintf(name, sizeof name, "%s", test_path("case.yaml"));
   struct cmn_case *c = cmn_case_parse(yaml, name, err, sizeof err);
   if (!c) print_error("%s\n", err);
   assert_non_null(c);
@@ -256,8 +243,8 @@ static void test_fill_3d_stl(void **state) {
   sph_mesh_init(&cube, 3);
   int src = sph_mesh_add_source(&cube, "cube");
   sph_mesh_box(&cube, (double[]){0.3, 0.3, 0.1}, (double[]){0.6, 0.7, 0.45}, 0.15, 0, 0, src);
-  char path[128];
-  snprintf(path, sizeof path, "%s/cube.stl", tmpdir);
+  char path[256];
+  snprintf(path, sizeof path, "%s", test_path("cube.stl"));
   assert_int_equal(sph_mesh_write_stl(&cube, path, 0), 0); /* ASCII: exact doubles */
   sph_mesh_free(&cube);
   struct sph_geometry g;
@@ -300,8 +287,8 @@ static void test_fill_3d_stl_tank(void **state) {
   sph_mesh_init(&tank, 3);
   sph_mesh_box(&tank, (double[]){0, 0, 0}, (double[]){0.6, 0.5, 0.4}, 0.6, 0, 0,
                sph_mesh_add_source(&tank, "tank"));
-  char path[128];
-  snprintf(path, sizeof path, "%s/tank.stl", tmpdir);
+  char path[256];
+  snprintf(path, sizeof path, "%s", test_path("tank.stl"));
   assert_int_equal(sph_mesh_write_stl(&tank, path, 0), 0);
   sph_mesh_free(&tank);
   struct sph_geometry g;
@@ -328,5 +315,5 @@ int main(void) {
       cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
       cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_interval_1d),
       cmocka_unit_test(test_fill_3d_stl),      cmocka_unit_test(test_fill_3d_stl_tank)};
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

@@ -2,72 +2,34 @@
  * (or triangle) and what was expected. Each case runs in a child process (the application layer
  * exits on bad input) whose stderr is captured. */
 #include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "testutil.h"
+/* testutil.h first */
+#include "sph_testfiles.h"
 
-static char tmpdir[64];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-gerr-XXXXXX");
-  return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  (void)state;
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-  return system(cmd) == 0 ? 0 : -1;
-}
-
-static void write_file(const char *name, const char *text) {
-  char path[256];
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  FILE *f = fopen(path, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-}
-
-/* Read the case in a child; returns its exit status and its stderr in msg. */
-static int run_case(const char *yaml, char *msg, size_t len) {
-  int fd[2];
-  assert_int_equal(pipe(fd), 0);
-  fflush(NULL);
-  pid_t pid = fork();
-  assert_true(pid >= 0);
-  if (pid == 0) {
-    close(fd[0]);
-    dup2(fd[1], 2);
-    char name[128], err[512];
-    snprintf(name, sizeof name, "%s/case.yaml", tmpdir);
-    struct cmn_case *c = cmn_case_parse(yaml, name, err, sizeof err);
-    if (!c) {
-      fprintf(stderr, "parse: %s\n", err);
-      _exit(99);
-    }
-    struct sph_geometry g;
-    struct sph_system s;
-    sph_geometry_read(&g, c);
-    cmn_case_check_unused(c);
-    sph_system_from_geometry(&s, &g);
-    _exit(0);
+/* Read a case given as text (named case.yaml in the test directory) as `mesh` would. */
+static int read_case(void *yaml) {
+  char err[512];
+  struct cmn_case *c = cmn_case_parse(yaml, test_path("case.yaml"), err, sizeof err);
+  if (!c) {
+    fprintf(stderr, "parse: %s\n", err);
+    return 99;
   }
-  close(fd[1]);
-  size_t n = 0;
-  ssize_t got;
-  while ((got = read(fd[0], msg + n, len - 1 - n)) > 0) n += (size_t)got;
-  msg[n] = '\0';
-  close(fd[0]);
-  int status;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  struct sph_geometry g;
+  struct sph_system s;
+  sph_geometry_read(&g, c);
+  cmn_case_check_unused(c);
+  sph_system_from_geometry(&s, &g);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  cmn_case_free(c);
+  return 0;
+}
+
+static int run_case(const char *yaml, char *msg, size_t len) {
+  return test_capture(read_case, (void *)yaml, msg, len);
 }
 
 static void expect(const char *yaml, const char *want) {
@@ -114,19 +76,19 @@ static void test_case_errors(void **state) {
          "    - {type: polygon, fluid: left, closed: false, points: [[1, 1], [0, 1]]}\n",
          "inconsistent orientation");
   /* Files. */
-  write_file("bad.poly", "polygon\n0 0\n1 0\n1 1 closed\n");
+  test_write("bad.poly", "polygon\n0 0\n1 0\n1 1 closed\n");
   expect(HEAD2 "  walls:\n    - {type: polyline_file, file: bad.poly}\n",
          "bad.poly:4: expected 'polygon', 'polyline', or a point");
-  write_file("open.poly", "# a floor and a wall\npolyline\n0 0\n1 0\n1 1\n");
+  test_write("open.poly", "# a floor and a wall\npolyline\n0 0\n1 0\n1 1\n");
   expect(HEAD2 "  walls:\n    - {type: polyline_file, file: open.poly}\n",
          "open.poly:3: segment 1: the wall is open at (0, 0)");
   expect(HEAD2 "  walls:\n    - {type: polyline_file, file: missing.poly}\n",
          "missing.poly: cannot open");
-  write_file("bad.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zero\n");
+  test_write("bad.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zero\n");
   expect(HEAD3 "  walls:\n    - {type: stl, file: bad.stl}\n",
          "bad.stl:5: expected three numbers after 'vertex', got 'zero'");
   /* A closed tetrahedron, facets counter-clockwise seen from outside (a proper solid). */
-  write_file("tetra.stl",
+  test_write("tetra.stl",
              "solid t\n"
              "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\n"
              "endloop\nendfacet\n"
@@ -139,7 +101,7 @@ static void test_case_errors(void **state) {
   assert_int_equal(
       run_case(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl}\n", msg, sizeof msg), 0);
   /* The same solid with its facets reversed (clockwise from outside): inside out. */
-  write_file("inverted.stl",
+  test_write("inverted.stl",
              "solid t\n"
              "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
              "endloop\nendfacet\n"
@@ -151,7 +113,7 @@ static void test_case_errors(void **state) {
              "endloop\nendfacet\nendsolid t\n");
   expect(HEAD3 "  walls:\n    - {type: stl, file: inverted.stl}\n", "inside out");
   /* Three facets only: open surface, named by triangle. */
-  write_file("open.stl",
+  test_write("open.stl",
              "solid t\n"
              "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\n"
              "endloop\nendfacet\n"
@@ -165,5 +127,5 @@ static void test_case_errors(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_case_errors)};
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

@@ -8,36 +8,8 @@
 
 #include "sabre/sph.h"
 #include "testutil.h"
-
-static char tmpdir[64];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-mesh-XXXXXX");
-  return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  (void)state;
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-  return system(cmd) == 0 ? 0 : -1;
-}
-
-static const char *tmpfile_path(const char *name) {
-  static char path[256];
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  return path;
-}
-
-static const char *write_text(const char *name, const char *text) {
-  const char *path = tmpfile_path(name);
-  FILE *f = fopen(path, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-  return path;
-}
+/* testutil.h first */
+#include "sph_testfiles.h"
 
 static double total_measure(const struct sph_mesh *m) {
   double sum = 0;
@@ -87,7 +59,7 @@ static void test_box_closed(void **state) {
 static void roundtrip(int binary) {
   struct sph_mesh m, r;
   cube(&m);
-  const char *path = tmpfile_path(binary ? "cube_bin.stl" : "cube_ascii.stl");
+  const char *path = test_path(binary ? "cube_bin.stl" : "cube_ascii.stl");
   assert_int_equal(sph_mesh_write_stl(&m, path, binary), 0);
   FILE *f = fopen(path, "rb");
   char head[6] = {0};
@@ -158,37 +130,37 @@ static void test_stl_errors(void **state) {
   struct sph_mesh m;
   sph_mesh_init(&m, 3);
   char msg[1024];
-  const char *ok = write_text("tetra.stl", text);
+  const char *ok = test_write("tetra.stl", text);
   assert_int_equal(sph_mesh_read_stl(&m, ok, 1.0, 1, msg, sizeof msg), 0);
   assert_int_equal(sph_mesh_check(&m, NULL, msg, sizeof msg), 0);
   assert_rel(sph_mesh_signed_volume(&m, 0), 1.0 / 6.0, 1e-15);
   sph_mesh_free(&m);
   /* Missing fourth face: open. */
   snprintf(text, sizeof text, "solid t\n%sendsolid t\n", tetra_facets);
-  expect_stl_error(write_text("open.stl", text), "the surface is open");
+  expect_stl_error(test_write("open.stl", text), "the surface is open");
   /* Fourth face with its vertices in the wrong order (normal 0: no facet-normal check). */
   snprintf(text, sizeof text,
            "solid t\n%sfacet normal 0 0 0\nouter loop\nvertex 1 0 0\nvertex 0 0 1\nvertex 0 1 0\n"
            "endloop\nendfacet\nendsolid t\n",
            tetra_facets);
-  expect_stl_error(write_text("flipped.stl", text), "inconsistent orientation");
-  expect_stl_error(tmpfile_path("flipped.stl"), "flipped.stl: triangle 4 runs through");
+  expect_stl_error(test_write("flipped.stl", text), "inconsistent orientation");
+  expect_stl_error(test_path("flipped.stl"), "flipped.stl: triangle 4 runs through");
   /* Facet normal against the vertex order. */
   snprintf(text, sizeof text,
            "solid t\n%sfacet normal -1 -1 -1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\n"
            "vertex 0 0 1\nendloop\nendfacet\nendsolid t\n",
            tetra_facets);
-  expect_stl_error(write_text("normal.stl", text), ":23: triangle 4: its facet normal");
+  expect_stl_error(test_write("normal.stl", text), ":23: triangle 4: its facet normal");
   /* Syntax errors name the line. */
-  expect_stl_error(write_text("syntax.stl",
+  expect_stl_error(test_write("syntax.stl",
                               "solid x\nfacet normal 0 0 1\nouter loop\n"
                               "vertex 0 0\nendloop\n"),
                    "syntax.stl:5: expected three numbers after 'vertex', got 'endloop'");
-  expect_stl_error(write_text("trunc.stl", "solid x\nfacet normal 0 0 1\n"),
+  expect_stl_error(test_write("trunc.stl", "solid x\nfacet normal 0 0 1\n"),
                    "trunc.stl:3: expected 'outer', got 'end of file'");
-  expect_stl_error(write_text("junk.stl", "hello"), "not an STL file");
+  expect_stl_error(test_write("junk.stl", "hello"), "not an STL file");
   /* Degenerate triangle. */
-  expect_stl_error(write_text("degen.stl",
+  expect_stl_error(test_write("degen.stl",
                               "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\n"
                               "vertex 1 1 1\nvertex 2 2 2\nendloop\nendfacet\n"
                               "endsolid d\n"),
@@ -196,7 +168,7 @@ static void test_stl_errors(void **state) {
   /* Binary: truncated file is not taken for binary. */
   struct sph_mesh c;
   cube(&c);
-  const char *bin = tmpfile_path("cut.stl");
+  const char *bin = test_path("cut.stl");
   assert_int_equal(sph_mesh_write_stl(&c, bin, 1), 0);
   assert_int_equal(truncate(bin, 84 + 50 * 10), 0);
   expect_stl_error(bin, "says n = 108");
@@ -289,7 +261,7 @@ static void test_polyline_file(void **state) {
   struct sph_mesh m;
   char msg[512];
   sph_mesh_init(&m, 2);
-  const char *ok = write_text("tank.poly",
+  const char *ok = test_write("tank.poly",
                               "# tank with an outlet on the right\npolygon\n0 0\n2 0 open\n2 1\n"
                               "0 1   # top left\n\npolygon\n0.5 0.25\n0.5 0.5\n0.75 0.5\n");
   assert_int_equal(sph_mesh_read_polyline(&m, ok, 1, msg, sizeof msg), 0);
@@ -315,7 +287,7 @@ static void test_polyline_file(void **state) {
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
     sph_mesh_init(&m, 2);
     assert_int_equal(
-        sph_mesh_read_polyline(&m, write_text("bad.poly", bad[i].text), 1, msg, sizeof msg), -1);
+        sph_mesh_read_polyline(&m, test_write("bad.poly", bad[i].text), 1, msg, sizeof msg), -1);
     if (!strstr(msg, bad[i].want)) print_error("message: '%s'\n", msg);
     assert_non_null(strstr(msg, bad[i].want));
     sph_mesh_free(&m);
@@ -331,5 +303,5 @@ int main(void) {
                                      cmocka_unit_test(test_refine_3d),
                                      cmocka_unit_test(test_polygon_2d),
                                      cmocka_unit_test(test_polyline_file)};
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

@@ -10,21 +10,8 @@
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "testutil.h"
-
-static char tmpdir[64];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sabre-test-out-XXXXXX");
-  return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  (void)state;
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-  return system(cmd) == 0 ? 0 : -1;
-}
+/* testutil.h first */
+#include "sph_testfiles.h"
 
 static void *copies[32];
 static size_t ncopies;
@@ -36,9 +23,7 @@ struct vtu {
 };
 
 static void vtu_read(struct vtu *v, const char *name) {
-  char path[256];
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  FILE *f = fopen(path, "rb");
+  FILE *f = fopen(test_path(name), "rb");
   assert_non_null(f);
   fseek(f, 0, SEEK_END);
   v->len = (size_t)ftell(f);
@@ -116,9 +101,7 @@ static void test_roundtrip(void **state) {
     pf->mass[i] = 0.1 + (double)i;
   }
   struct sph_output out;
-  char dir[128];
-  snprintf(dir, sizeof dir, "%s", tmpdir);
-  assert_int_equal(sph_output_open(&out, dir, "series"), 0);
+  assert_int_equal(sph_output_open(&out, test_dir, "series"), 0);
   assert_int_equal(sph_output_write(&out, &s, 0.0), 0);
   pf->x[0][0] = 0.999;
   assert_int_equal(sph_output_write(&out, &s, 0.125), 0);
@@ -175,13 +158,8 @@ static void test_roundtrip(void **state) {
   assert_int_equal(types[4], 3); /* VTK_LINE */
   free(b.buf);
 
-  char path[256];
-  snprintf(path, sizeof path, "%s/series.pvd", tmpdir);
-  FILE *pvd = fopen(path, "r");
-  assert_non_null(pvd);
-  char text[2048] = "";
-  assert_true(fread(text, 1, sizeof text - 1, pvd) > 0);
-  fclose(pvd);
+  char text[2048];
+  test_read("series.pvd", text, sizeof text);
   assert_non_null(
       strstr(text, "timestep=\"0.125\" group=\"\" part=\"1\" file=\"boundary_000001.vtu\""));
   assert_non_null(strstr(text, "timestep=\"0\" group=\"\" part=\"0\" file=\"fluid_000000.vtu\""));
@@ -192,5 +170,5 @@ static void test_roundtrip(void **state) {
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_roundtrip)};
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

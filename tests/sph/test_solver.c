@@ -16,6 +16,9 @@
 
 #include "solver_fixture.h"
 #include "testutil.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static void jitter(struct sph_solver *sv, uint64_t seed, double dx, double dv, double drho) {
   struct sabre_rng rng;
@@ -255,11 +258,52 @@ static void test_density_band_stop(void **state) {
   sph_solver_free(&sv);
 }
 
+/* A particle put behind the floor is reported by name; so is a non-finite velocity. */
+static void test_escape_and_nan(void **state) {
+  (void)state;
+  for (int which = 0; which < 2; which++) {
+    struct sph_system s;
+    fixture_lattice(&s, 16, 8, 0.01, 2.0, FIX_CHANNEL);
+    struct sph_config cfg;
+    fixture_config(&cfg);
+    struct sph_solver sv;
+    sph_solver_init(&sv, &cfg, &s, NULL, NULL);
+    sph_system_free(&s);
+    struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
+    if (which == 0) {
+      sabre_fp_traps_on();
+      f->x[1][3] = -0.3 * sv.sys.dr; /* below the floor y = 0 */
+      sph_nbrs_build(&sv.nb, &sv.sys, 0.2 * sv.sys.h);
+      sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
+      assert_int_equal(sv.nb.escaped, 3);
+      f->x[1][3] = 0.5 * sv.sys.dr;
+      sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
+      assert_int_equal(sv.nb.escaped, -1);
+      f->x[1][3] = -0.3 * sv.sys.dr;
+    } else {
+      /* The NaN must reach the check, not trap: traps off, and on this thread only (OpenMP workers
+       * keep the trapping environment they were created with). */
+      sabre_fp_traps_off();
+#ifdef _OPENMP
+      omp_set_num_threads(1);
+#endif
+      f->v[0][5] = NAN;
+    }
+    char msg[512];
+    assert_int_equal(sph_solver_step(&sv, INFINITY, msg, sizeof msg), -1);
+    print_message("%s\n", msg);
+    assert_non_null(strstr(msg, "step 1"));
+    assert_non_null(strstr(msg, which ? "non-finite" : "through a wall"));
+    assert_non_null(strstr(msg, which ? "id " : "(index 3)"));
+    sph_solver_free(&sv);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_momentum_periodic), cmocka_unit_test(test_diffusion_volume),
       cmocka_unit_test(test_skew_adjoint),      cmocka_unit_test(test_vertex_masses),
-      cmocka_unit_test(test_density_band_stop),
+      cmocka_unit_test(test_density_band_stop), cmocka_unit_test(test_escape_and_nan),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

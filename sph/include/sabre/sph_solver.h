@@ -194,14 +194,15 @@ struct sph_solver {
   int *vert_group;              /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
   double mass_ref;              /**< fluid + vertex mass at start (diagnostics) */
+  double vertex_phi;            /**< vertex layer thickness / Δr of the vertex masses [-] */
   long evaluated_step;          /**< step whose start state sph_solver_evaluate() saw, or −1 */
 };
 
 /**
  * Set up a solver on a filled system (moved into sv; s is left empty): kernel, EOS, initial
- * density and pressure (uniform or hydrostatic), masses m_a = ρ_a Δr^d, vertex masses so that
- * the summation Σ_b m_b w_ab equals γ_a ρ_a for fluid at rest (least squares over the fluid near
- * walls), vertex and segment values. mesh_source (may be NULL): per segment the index of its wall
+ * density and pressure (uniform or hydrostatic), masses m_a = ρ_a Δr^d, vertex masses
+ * m_v = φ ρ_v A_v Δr (A_v: the vertex's share of its segments) with φ such that the summation
+ * Σ_b m_b w_ab best equals γ_a ρ_a for the initial fluid (least squares), vertex and segment values. mesh_source (may be NULL): per segment the index of its wall
  * in geometry.walls and its element number there, for force groups.
  */
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,

@@ -20,77 +20,45 @@ static double hydrostatic_pressure(const struct rmn_eos *e, double g, double d) 
 }
 
 /*
- * Vertex masses: least squares (CGLS) for Σ_v m_v w_av = γ_a ρ_a − Σ_{b∈F} m_b w_ab over the fluid,
- * so that the summation density of the fluid at its initial positions equals its initial density
- * (the time-summation continuity then starts from a consistent state).
+ * Vertex masses m_v = φ ρ_v A_v Δr, A_v the vertex's share of its segments' measure (Σ_{s∋v} |s|/d):
+ * a wall layer φΔr thick, with the one scalar φ fitted by least squares so that the summation
+ * density of the fluid at its initial positions equals its initial density,
+ *   min_φ Σ_{a∈F} (γ_a ρ_a − Σ_{b∈F} m_b w_ab − φ z_a)²,  z_a = Σ_v ρ_v A_v Δr w_av.
+ * (A least-squares fit of every vertex mass is ill-posed in 3D with h/Δr = 1.3: the masses
+ * oscillate by orders of magnitude.) The time-summation continuity then starts consistently.
  */
 static void vertex_masses(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_kernel *k = &sv->kernel;
   const struct sph_nlist *fv = &sv->nb.list[SPH_KIND_VERTEX], *ff = &sv->nb.list[SPH_KIND_FLUID];
-  const struct sph_nlist *vf = &sv->nb.vf;
   const size_t nf = f->n, nv = v->n;
   for (size_t i = 0; i < nv; i++) v->mass[i] = 0.0;
   if (nv == 0 || nf == 0) return;
-  double *r = cmn_calloc(nf, sizeof *r), *q = cmn_calloc(nf, sizeof *q);
-  double *x = cmn_calloc(nv, sizeof *x), *sres = cmn_calloc(nv, sizeof *sres);
-  double *p = cmn_calloc(nv, sizeof *p);
+  double *unit = cmn_calloc(nv, sizeof *unit); /* ρ_v A_v Δr */
+  for (size_t j = 0; j < sg->n; j++)
+    for (int d = 0; d < s->dim; d++) unit[sg->vertex[d][j]] += sg->measure[j] / s->dim;
+  for (size_t i = 0; i < nv; i++) unit[i] *= v->rho[i] * s->dr;
+  double yz = 0.0, zz = 0.0;
   for (size_t a = 0; a < nf; a++) {
-    double sum = f->mass[a] * sph_kernel_w_inline(k, 0.0);
+    if (fv->offset[a] == fv->offset[a + 1]) continue;
+    double sum = f->mass[a] * sph_kernel_w_inline(k, 0.0), z = 0.0;
     for (size_t j = ff->offset[a]; j < ff->offset[a + 1]; j++) {
       struct sph_pair pr;
       if (sph_pair_eval(k, s, f, a, f, ff->index[j], &pr)) sum += f->mass[ff->index[j]] * pr.w;
     }
-    r[a] = f->gamma[a] * f->rho[a] - sum;
-  }
-  /* s = Aᵀ r */
-#define ATR(out, in)                                                    \
-  for (size_t iv = 0; iv < nv; iv++) {                                  \
-    double acc = 0.0;                                                   \
-    for (size_t j = vf->offset[iv]; j < vf->offset[iv + 1]; j++) {      \
-      struct sph_pair pr;                                               \
-      if (sph_pair_eval(k, s, v, iv, f, vf->index[j], &pr))             \
-        acc += pr.w * (in)[vf->index[j]];                               \
-    }                                                                   \
-    (out)[iv] = acc;                                                    \
-  }
-  ATR(sres, r);
-  double gam = 0.0;
-  for (size_t i = 0; i < nv; i++) {
-    p[i] = sres[i];
-    gam += sres[i] * sres[i];
-  }
-  const double gam0 = gam;
-  for (int it = 0; it < 500 && gam > 1e-24 * gam0 && gam > 0.0; it++) {
-    double qq = 0.0;
-    for (size_t a = 0; a < nf; a++) {
-      double acc = 0.0;
-      for (size_t j = fv->offset[a]; j < fv->offset[a + 1]; j++) {
-        struct sph_pair pr;
-        if (sph_pair_eval(k, s, f, a, v, fv->index[j], &pr)) acc += pr.w * p[fv->index[j]];
-      }
-      q[a] = acc;
-      qq += acc * acc;
+    for (size_t j = fv->offset[a]; j < fv->offset[a + 1]; j++) {
+      struct sph_pair pr;
+      if (sph_pair_eval(k, s, f, a, v, fv->index[j], &pr)) z += unit[fv->index[j]] * pr.w;
     }
-    if (!(qq > 0.0)) break;
-    const double alpha = gam / qq;
-    for (size_t i = 0; i < nv; i++) x[i] += alpha * p[i];
-    for (size_t a = 0; a < nf; a++) r[a] -= alpha * q[a];
-    ATR(sres, r);
-    double gnew = 0.0;
-    for (size_t i = 0; i < nv; i++) gnew += sres[i] * sres[i];
-    const double beta = gnew / gam;
-    for (size_t i = 0; i < nv; i++) p[i] = sres[i] + beta * p[i];
-    gam = gnew;
+    yz += (f->gamma[a] * f->rho[a] - sum) * z;
+    zz += z * z;
   }
-#undef ATR
-  for (size_t i = 0; i < nv; i++) v->mass[i] = x[i];
-  free(r);
-  free(q);
-  free(x);
-  free(sres);
-  free(p);
+  const double phi = zz > 0.0 ? yz / zz : 0.0;
+  for (size_t i = 0; i < nv; i++) v->mass[i] = phi * unit[i];
+  sv->vertex_phi = phi;
+  free(unit);
 }
 
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,

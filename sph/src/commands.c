@@ -180,8 +180,18 @@ int sph_cmd_gamma(int argc, char **argv) {
   struct sph_kernel kern;
   if (sph_kernel_init(&kern, (int)dim, k * dr)) cmn_input_error("invalid kernel parameters");
   double support = sph_kernel_support(&kern);
+  struct sph_system walls; /* to tell points outside the fluid */
+  sph_system_init(&walls, (int)dim);
+  walls.dr = dr;
+  sph_system_add_walls(&walls, &m);
   struct sph_wall_element *el = cmn_malloc((m.nelem + 1) * sizeof *el);
   for (int p = 0; p < nat; p++) {
+    double behind;
+    if (sph_system_wall_side(&walls, at[p], &behind) == 0 && behind > 1e-9 * dr)
+      cmn_warning(
+          "--at %g,%g,%g lies outside the fluid, %g m behind the nearest wall: gamma "
+          "there has no meaning",
+          at[p][0], at[p][1], at[p][2], behind);
     size_t n = 0;
     for (size_t e = 0; e < m.nelem; e++) {
       double v[3][3], q[3];
@@ -201,6 +211,7 @@ int sph_cmd_gamma(int argc, char **argv) {
   }
   free(el);
   free(at);
+  sph_system_free(&walls);
   sph_mesh_free(&m);
   return fflush(stdout) == 0 ? 0 : CMN_EXIT_FAILURE;
 }

@@ -167,6 +167,19 @@ static void test_gamma_obstacle(void **state) {
   assert_rel(grad2[1], -grad0[2], 1e-10); /* -y away from the obstacle's y- face */
 }
 
+/* A point outside the walls is reported on stderr (the output line is still printed). */
+static void test_gamma_outside(void **state) {
+  (void)state;
+  const char *argv[] = {"gamma",   "--dim", "2",       "--dr", "0.1",     "--h-over-dr",
+                        "2",       "--box", "0,0:1,1", "--at", "1.5,0.5", "--at",
+                        "0.5,0.5", "--at",  "1,0.3",   NULL};
+  assert_int_equal(run(sph_cmd_gamma, argv), 0);
+  assert_non_null(strstr(out, "warning: --at 1.5,0.5,0 lies outside the fluid, 0.5 m behind"));
+  assert_null(strstr(out, "--at 0.5,0.5,0 lies"));
+  assert_null(strstr(out, "--at 1,0.3,0 lies")); /* on the wall */
+  assert_non_null(strstr(out, "{\"at\": [1.5, 0.5]"));
+}
+
 static void test_gamma_errors(void **state) {
   (void)state;
   static const struct {
@@ -242,8 +255,8 @@ static void test_mesh_command(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_gamma_2d), cmocka_unit_test(test_gamma_box_vs_stl),
-      cmocka_unit_test(test_gamma_obstacle), cmocka_unit_test(test_gamma_errors),
-      cmocka_unit_test(test_mesh_command)};
+      cmocka_unit_test(test_gamma_2d),       cmocka_unit_test(test_gamma_box_vs_stl),
+      cmocka_unit_test(test_gamma_obstacle), cmocka_unit_test(test_gamma_outside),
+      cmocka_unit_test(test_gamma_errors),   cmocka_unit_test(test_mesh_command)};
   return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

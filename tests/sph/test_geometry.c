@@ -179,6 +179,30 @@ static void test_step_wedge(void **state) {
   sph_geometry_free(&g);
 }
 
+/* Lattice points midway between two walls (equally near both, within the search reach) are kept:
+ * a box three layers high and a cube three layers wide, filled completely. */
+static void test_fill_midway(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
+      "    - {type: box, lo: [0, 0], hi: [1, 0.3]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1, 0.3]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 30);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  build(
+      "geometry:\n  dimension: 3\n  dr: 0.1\n  walls:\n"
+      "    - {type: box, lo: [0, 0, 0], hi: [0.3, 0.3, 0.3]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [0.3, 0.3, 0.3]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 27);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 /* Regions that never come near a wall: one far inside the tank is filled, one far outside is not
  * (their side comes from the nearest of all the walls). */
 static void test_fill_far_regions(void **state) {
@@ -313,7 +337,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_box_2d),           cmocka_unit_test(test_fill_2d_polygons),
       cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
-      cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_interval_1d),
-      cmocka_unit_test(test_fill_3d_stl),      cmocka_unit_test(test_fill_3d_stl_tank)};
+      cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_fill_midway),
+      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl),
+      cmocka_unit_test(test_fill_3d_stl_tank)};
   return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

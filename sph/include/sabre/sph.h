@@ -328,6 +328,12 @@ void sph_system_add_walls(struct sph_system *s, const struct sph_mesh *m);
  * min_wall_distance from them. The walls must already be in s. Returns the count added.
  */
 size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g);
+/**
+ * Side of the walls of s on which point x lies, from the nearest wall element (pseudo-normals at
+ * edges and vertices; O(segments), for checks, not for loops): 1 the fluid side, 0 the other side,
+ * −1 if s has no walls. *dist receives the distance to the nearest element [m].
+ */
+int sph_system_wall_side(const struct sph_system *s, const double *x, double *dist);
 /** sph_system_init + walls + fluid for a geometry; s->h = h_over_dr · dr. */
 void sph_system_from_geometry(struct sph_system *s, const struct sph_geometry *g);
 

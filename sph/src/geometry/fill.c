@@ -85,9 +85,9 @@ static double corner_angle(const double v[3][3], int k) {
 
 /*
  * Side of the walls of point x from its wall neighbours: +1 fluid side, 0 other side; distance to
- * the nearest element in *dist. The sign uses the pseudo-normal of the nearest feature (sum of the
- * normals of the elements at minimal distance, angle-weighted at a 3D vertex), which is correct at
- * edges and vertices of a closed mesh (Bærentzen & Aanæs 2005).
+ * the nearest element in *dist. The sign uses the pseudo-normal of the nearest point's feature
+ * (sum of the normals of the elements that contain that point, angle-weighted at a 3D vertex),
+ * which is correct at edges and vertices of a closed mesh (Bærentzen & Aanæs 2005).
  */
 static int wall_side(const struct sph_system *t, const size_t *cand, size_t ncand, const double *x,
                      double *dist) {
@@ -109,7 +109,11 @@ static int wall_side(const struct sph_system *t, const size_t *cand, size_t ncan
     size_t j = cand[k];
     double v[3][3], q[3];
     sph_segment_vertices(t, j, x, v);
-    if (sph_element_distance(dim, v, x, q) > dmin + tol) continue;
+    /* Only the elements that share the nearest point: at equal distances from several walls
+     * (a point midway across a channel) their normals would cancel. */
+    if (sph_element_distance(dim, v, x, q) > dmin + tol ||
+        fabs(q[0] - qmin[0]) + fabs(q[1] - qmin[1]) + fabs(q[2] - qmin[2]) > tol)
+      continue;
     double w = 1;
     if (dim == 3)
       for (int c = 0; c < 3; c++)
@@ -140,6 +144,17 @@ static void propagate(signed char *side, const long *n, int dim, size_t *queue, 
       stride *= (size_t)n[a];
     }
   }
+}
+
+int sph_system_wall_side(const struct sph_system *s, const double *x, double *dist) {
+  size_t nseg = s->part[SPH_KIND_SEGMENT].n;
+  *dist = INFINITY;
+  if (nseg == 0) return -1;
+  size_t *all = cmn_malloc(nseg * sizeof *all);
+  for (size_t j = 0; j < nseg; j++) all[j] = j;
+  int side = wall_side(s, all, nseg, x, dist);
+  free(all);
+  return side;
 }
 
 size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {

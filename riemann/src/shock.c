@@ -68,6 +68,8 @@ static int rh_velocity_fdf(const gsl_vector *x, void *params, gsl_vector *f, gsl
 }
 
 static double star_function_gsl(double rho, void *params);
+static double star_derivative_gsl(double rho, void *params);
+static void star_fdf_gsl(double rho, void *params, double *f, double *df);
 
 struct rmn_workspace *rmn_workspace_alloc(void) {
   struct rmn_workspace *ws = calloc(1, sizeof *ws);
@@ -75,7 +77,8 @@ struct rmn_workspace *rmn_workspace_alloc(void) {
   ws->newton = gsl_multiroot_fdfsolver_alloc(gsl_multiroot_fdfsolver_newton, 2);
   ws->x = gsl_vector_alloc(2);
   ws->brent = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!ws->newton || !ws->x || !ws->brent) {
+  ws->secant_newton = gsl_root_fdfsolver_alloc(gsl_root_fdfsolver_newton);
+  if (!ws->newton || !ws->x || !ws->brent || !ws->secant_newton) {
     rmn_workspace_free(ws);
     return NULL;
   }
@@ -84,6 +87,10 @@ struct rmn_workspace *rmn_workspace_alloc(void) {
   ws->rh_velocity = (gsl_multiroot_function_fdf){
       .f = rh_velocity_f, .df = rh_velocity_df, .fdf = rh_velocity_fdf, .n = 2, .params = &ws->rh};
   ws->star = (gsl_function){.function = star_function_gsl, .params = &ws->star_data};
+  ws->star_fdf = (gsl_function_fdf){.f = star_function_gsl,
+                                    .df = star_derivative_gsl,
+                                    .fdf = star_fdf_gsl,
+                                    .params = &ws->star_data};
   return ws;
 }
 
@@ -92,6 +99,7 @@ void rmn_workspace_free(struct rmn_workspace *ws) {
   if (ws->newton) gsl_multiroot_fdfsolver_free(ws->newton);
   if (ws->x) gsl_vector_free(ws->x);
   if (ws->brent) gsl_root_fsolver_free(ws->brent);
+  if (ws->secant_newton) gsl_root_fdfsolver_free(ws->secant_newton);
   free(ws);
 }
 
@@ -104,8 +112,35 @@ double rmn_star_f_side_(const struct rmn_eos *eos, double rho, double rho_k, dou
 
 static double star_function_gsl(double rho, void *params) {
   const struct rmn_star_data *d = params;
+  if (!(rho >= d->lo && rho <= d->hi)) return NAN;
   return rmn_star_f_side_(d->eos, rho, d->rho_l, d->p_l, d->psi_l) +
          rmn_star_f_side_(d->eos, rho, d->rho_r, d->p_r, d->psi_r) + d->u_r - d->u_l;
+}
+
+/* d f_K/dρ: c/ρ on the rarefaction branch; on the shock branch, with A = (p − p_K)(ρ − ρ_K)/(ρ
+ * ρ_K), f_K = sqrt(A) and dA/dρ = (c² (ρ − ρ_K) + p − p_K)/(ρ ρ_K) − A/ρ; both tend to c_K/ρ_K at
+ * ρ_K. */
+static double star_f_side_derivative(const struct rmn_eos *eos, double rho, double rho_k,
+                                     double p_k) {
+  double c = rmn_eos_sound_speed(eos, rho);
+  if (rho <= rho_k) return c / rho;
+  double dp = rmn_eos_pressure(eos, rho) - p_k, drho = rho - rho_k;
+  double a = dp * drho / (rho * rho_k);
+  if (!(a > 0.0)) return c / rho;
+  double da = (c * c * drho + dp) / (rho * rho_k) - a / rho;
+  return 0.5 * da / sqrt(a);
+}
+
+static double star_derivative_gsl(double rho, void *params) {
+  const struct rmn_star_data *d = params;
+  if (!(rho >= d->lo && rho <= d->hi)) return NAN;
+  return star_f_side_derivative(d->eos, rho, d->rho_l, d->p_l) +
+         star_f_side_derivative(d->eos, rho, d->rho_r, d->p_r);
+}
+
+static void star_fdf_gsl(double rho, void *params, double *f, double *df) {
+  *f = star_function_gsl(rho, params);
+  *df = star_derivative_gsl(rho, params);
 }
 
 double rmn_shock_velocity_closed_form(const struct rmn_eos *eos, double rho_int, double un_int,

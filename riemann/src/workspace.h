@@ -20,6 +20,7 @@ struct rmn_rh_data {
 struct rmn_star_data {
   const struct rmn_eos *eos;
   double rho_l, u_l, p_l, psi_l, rho_r, u_r, p_r, psi_r;
+  double lo, hi; /* bracket of the root; outside it the functions return NaN (no evaluation) */
 };
 
 struct rmn_workspace {
@@ -28,7 +29,9 @@ struct rmn_workspace {
   gsl_multiroot_function_fdf rh_pressure, rh_velocity;
   struct rmn_rh_data rh;
   gsl_root_fsolver *brent;
+  gsl_root_fdfsolver *secant_newton;
   gsl_function star;
+  gsl_function_fdf star_fdf;
   struct rmn_star_data star_data;
 };
 

@@ -388,9 +388,9 @@ struct rmn_exact {
 };
 
 /**
- * Solve the exact Riemann problem. Needs a workspace (Brent root finder) unless the solution is
- * closed form (two rarefactions or vacuum). Errors: RMN_EINVAL (NaN, negative density, both states
- * dry, bad params), RMN_ENOCONV.
+ * Solve the exact Riemann problem. Needs a workspace (GSL Newton root finder kept in the bracket
+ * of the root, Brent as fallback) unless the solution is closed form (two rarefactions or vacuum).
+ * Errors: RMN_EINVAL (NaN, negative density, both states dry, bad params), RMN_ENOCONV.
  */
 int rmn_exact_solve(const struct rmn_eos *eos, const struct rmn_params *params,
                     struct rmn_workspace *ws, double rho_l, double u_l, double rho_r, double u_r,

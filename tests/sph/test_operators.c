@@ -261,6 +261,43 @@ static void test_constant_defect(void **state) {
   assert_true(worst[0] < 0.12 && worst[1] < worst[0] / 2);
 }
 
+/* The sign of that defect on the first row decides whether a wall attracts or repels fluid at
+ * constant pressure: −Grad(p)/ρ must point into the fluid. First row at Δr/2 from the wall (vertex
+ * layer fitted to φ ≈ −0.03): Grad^{γ,0}(1)·n > 0, the wall attracts the row (dam-break fronts sink
+ * into the floor); first row at Δr (φ ≈ 0.6, the vertices carry the half cell next to the wall):
+ * Grad·n < 0, the wall repels. docs/sph-solver.md §7. */
+static void test_first_row_sign(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  for (int r = 0; r < 2; r++) {
+    struct sph_system s;
+    fixture_lattice_offset(&s, 24, 24, 1.0 / 24, 2.0, FIX_CHANNEL, r ? 1.0 : 0.5);
+    struct sph_config cfg;
+    fixture_config(&cfg);
+    struct sph_solver sv;
+    sph_solver_init(&sv, &cfg, &s, NULL, NULL);
+    sph_system_free(&s);
+    const struct sph_parts *fl = &sv.sys.part[SPH_KIND_FLUID];
+    double *one[SPH_NKINDS];
+    for (int k = 0; k < SPH_NKINDS; k++) {
+      one[k] = malloc((sv.sys.part[k].n + 1) * sizeof(double));
+      for (size_t i = 0; i < sv.sys.part[k].n; i++) one[k][i] = 1.0;
+    }
+    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+    double g[3];
+    sph_op_grad(&op, 0.0, (const double *const *)one, 3, g); /* bottom row, n = +y */
+    print_message("first row at %s: phi = %.3f, Grad(1).n h = %+.4f\n", r ? "dr" : "dr/2",
+                  sv.vertex_phi, g[1] * sv.sys.h);
+    assert_true(fl->x[1][3] < 1.01 * (r ? 1.0 : 0.5) / 24);
+    if (r)
+      assert_true(g[1] < 0.0 && sv.vertex_phi > 0.3);
+    else
+      assert_true(g[1] > 0.0 && sv.vertex_phi < 0.0);
+    for (int k = 0; k < SPH_NKINDS; k++) free(one[k]);
+    sph_solver_free(&sv);
+  }
+}
+
 /* The operators with the cell lists equal those with the naive search (up to summation order). */
 static void test_cells_vs_naive(void **state) {
   (void)state;
@@ -301,6 +338,7 @@ int main(void) {
       cmocka_unit_test(test_interior),
       cmocka_unit_test(test_flat_wall),
       cmocka_unit_test(test_constant_defect),
+      cmocka_unit_test(test_first_row_sign),
       cmocka_unit_test(test_cells_vs_naive),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

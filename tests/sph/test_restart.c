@@ -4,9 +4,13 @@
  * forces.csv and final checkpoint. Also the library level: N steps, or k steps + checkpoint write +
  * read into a fresh solver + N − k steps, give bitwise equal particle stores.
  */
+#define _POSIX_C_SOURCE 200809L /* fork, kill, nanosleep, mkdtemp */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <time.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "sabre/common.h"
@@ -44,6 +48,11 @@ static const char case_text[] =
 
 static char dir[256];
 
+static void sleep_ms(long ms) {
+  struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+  nanosleep(&ts, NULL);
+}
+
 static char *path(const char *a, const char *b) {
   static char buf[4][512];
   static int k = 0;
@@ -74,7 +83,7 @@ static void same_file(const char *a, const char *b) {
 }
 
 static int run(const char *out, const char *set, const char *restart) {
-  char *argv[12];
+  char *argv[16];
   int argc = 0;
   argv[argc++] = "run";
   argv[argc++] = path("case.yaml", NULL);
@@ -82,9 +91,16 @@ static int run(const char *out, const char *set, const char *restart) {
   argv[argc++] = (char *)out;
   argv[argc++] = "--threads";
   argv[argc++] = "1";
-  if (set) {
+  /* set: one or more "key=value" separated by ';' */
+  static char sets[4][256];
+  int ns = 0;
+  for (const char *p = set; p && *p && ns < 4; ns++) {
+    const char *e = strchr(p, ';');
+    size_t len = e ? (size_t)(e - p) : strlen(p);
+    snprintf(sets[ns], sizeof sets[ns], "%.*s", (int)len, p);
     argv[argc++] = "--set";
-    argv[argc++] = (char *)set;
+    argv[argc++] = sets[ns];
+    p = e ? e + 1 : NULL;
   }
   if (restart) {
     argv[argc++] = "--restart";
@@ -117,6 +133,24 @@ static void test_command_restart(void **state) {
     snprintf(pb, sizeof pb, "%s/%s", b, files[i]);
     same_file(pa, pb);
   }
+  /* SIGTERM: the run writes a checkpoint and exits with 128 + 15; restarting it ends like the
+   * uninterrupted run. */
+  char c[600];
+  snprintf(c, sizeof c, "%s", path("signal", NULL));
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) _exit(run(c, "time.end=1000;gravity=[0, 0];initial.pressure=zero", NULL));
+  char ckc[700];
+  snprintf(ckc, sizeof ckc, "%s/diagnostics.csv", c);
+  for (int i = 0; i < 600 && access(ckc, F_OK) != 0; i++) sleep_ms(10);
+  sleep_ms(300);
+  kill(pid, SIGTERM);
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 128 + SIGTERM);
+  snprintf(ckc, sizeof ckc, "%s/checkpoint.bin", c);
+  assert_int_equal(access(ckc, F_OK), 0);
   /* The run really was split: a restart of the final checkpoint does nothing more. */
   size_t n;
   char *d = slurp(path("full", "diagnostics.csv"), &n);

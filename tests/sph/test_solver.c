@@ -258,6 +258,50 @@ static void test_density_band_stop(void **state) {
   sph_solver_free(&sv);
 }
 
+/* Hydrostatic water at rest: the Shepard vertex pressure with the hydrostatic correction reads the
+ * floor pressure, and the floor force (segment pressure integral) carries the column's weight. */
+static void test_hydrostatic_floor(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_system s;
+  const int nx = 16, ny = 24;
+  const double dr = 0.02;
+  fixture_lattice(&s, nx, ny, dr, 2.0, FIX_CHANNEL);
+  struct sph_config cfg;
+  fixture_config(&cfg);
+  cfg.gravity[1] = -9.81;
+  cfg.hydrostatic = 1;
+  cfg.nforces = 1;
+  snprintf(cfg.forces[0].name, sizeof cfg.forces[0].name, "floor");
+  cfg.forces[0].wall = 0;
+  cfg.forces[0].nedges = 1;
+  cfg.forces[0].edges[0] = 1;
+  const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
+  int *wall = calloc(sg->n + 1, sizeof *wall);
+  long *edge = calloc(sg->n + 1, sizeof *edge);
+  for (size_t j = 0; j < sg->n; j++) edge[j] = sg->normal[1][j] > 0 ? 1 : 3; /* box edge numbers */
+  struct sph_solver sv;
+  sph_solver_init(&sv, &cfg, &s, wall, edge);
+  sph_system_free(&s);
+  free(wall);
+  free(edge);
+  const double H = ny * dr, p_floor = rmn_eos_pressure(&sv.eos, sv.sys.part[SPH_KIND_FLUID].rho[0]) +
+                                      0.5 * dr * 9.81 * sv.sys.part[SPH_KIND_FLUID].rho[0];
+  const struct sph_parts *v = &sv.sys.part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++)
+    if (v->x[1][i] < 0.5 * dr) assert_rel(sv.p[SPH_KIND_VERTEX][i], p_floor, 2e-3);
+  sph_solver_evaluate(&sv);
+  double f[SPH_MAX_FORCE_GROUPS][3];
+  sph_solver_wall_forces(&sv, f);
+  double weight = 0.0;
+  const struct sph_parts *fl = &sv.sys.part[SPH_KIND_FLUID];
+  for (size_t a = 0; a < fl->n; a++) weight += fl->mass[a] * 9.81;
+  print_message("floor force %.6g N for a weight %.6g N (H = %g m)\n", -f[0][1], weight, H);
+  assert_rel(-f[0][1], weight, 3e-3);
+  assert_abs(f[0][0], 0.0, 1e-9 * weight);
+  sph_solver_free(&sv);
+}
+
 /* A particle put behind the floor is reported by name; so is a non-finite velocity. */
 static void test_escape_and_nan(void **state) {
   (void)state;
@@ -304,6 +348,7 @@ int main(void) {
       cmocka_unit_test(test_momentum_periodic), cmocka_unit_test(test_diffusion_volume),
       cmocka_unit_test(test_skew_adjoint),      cmocka_unit_test(test_vertex_masses),
       cmocka_unit_test(test_density_band_stop), cmocka_unit_test(test_escape_and_nan),
+      cmocka_unit_test(test_hydrostatic_floor),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -172,11 +172,12 @@ void sph_solver_forces(struct sph_solver *sv) {
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *sg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nls = &sv->nb.list[SPH_KIND_SEGMENT];
   const double zmin = 0.5 * s->dr;
+  const int viscous = sv->cfg.nu > 0.0;
   /* Wall shear stress per F–S pair, M(19–20): (μ_s + μ_a) (v_a − v_s)_t / z. */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) if (viscous)
 #endif
-  for (size_t a = 0; a < f->n; a++) {
+  for (size_t a = 0; a < (viscous ? f->n : 0); a++) {
     for (size_t q = nls->offset[a]; q < nls->offset[a + 1]; q++) {
       size_t j = nls->index[q];
       const double n[3] = {sg->normal[0][j], sg->normal[1][j], sg->normal[2][j]};
@@ -195,7 +196,6 @@ void sph_solver_forces(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++)
     for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
   const double *flux[3] = {sv->wall_flux[0], sv->wall_flux[1], sv->wall_flux[2]};
-  const int viscous = sv->cfg.nu > 0.0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif

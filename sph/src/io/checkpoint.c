@@ -12,7 +12,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT1";
+static const char magic[16] = "SABRE-SPH-CKPT2";
 
 static size_t type_size(enum sph_field_type t) {
   switch (t) {
@@ -46,7 +46,13 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   W(&dim, sizeof dim, 1);
   W(&s->dr, sizeof(double), 1);
   W(&s->h, sizeof(double), 1);
-  W(&s->domain, sizeof s->domain, 1);
+  /* the domain member by member: no struct padding in the file */
+  int32_t ddim = s->domain.dim, per[3] = {s->domain.periodic[0], s->domain.periodic[1],
+                                          s->domain.periodic[2]};
+  W(&ddim, sizeof ddim, 1);
+  W(s->domain.lo, sizeof(double), 3);
+  W(s->domain.hi, sizeof(double), 3);
+  W(per, sizeof per[0], 3);
   W(&s->next_id, sizeof s->next_id, 1);
   W(&sv->time, sizeof(double), 1);
   W(&sv->step, sizeof(long), 1);
@@ -117,7 +123,14 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   R(&dim, sizeof dim, 1);
   R(&dr, sizeof dr, 1);
   R(&h, sizeof h, 1);
-  R(&dom, sizeof dom, 1);
+  int32_t ddim, per[3];
+  memset(&dom, 0, sizeof dom);
+  R(&ddim, sizeof ddim, 1);
+  R(dom.lo, sizeof(double), 3);
+  R(dom.hi, sizeof(double), 3);
+  R(per, sizeof per[0], 3);
+  dom.dim = ddim;
+  for (int i = 0; i < 3; i++) dom.periodic[i] = per[i];
   if (dim != s->dim || dr != s->dr || h != s->h) {
     snprintf(msg, msglen,
              "%s: written for dimension %d, dr = %g m, h = %g m; the case has %d, %g m, %g m",

@@ -79,6 +79,7 @@ static void test_errors(void **state) {
   expect("--set time.end=-1", "time.end", "positive");
   expect("--set fluid.xi=0.5", "fluid.xi", "");
   expect("--set fluid.c0=fast", "fluid.c0", "fast");
+  expect("--set numerics.cfl=2", "numerics.cfl", "(0, 1]");
 }
 
 static void test_missing(void **state) {

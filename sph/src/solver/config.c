@@ -13,6 +13,13 @@
     if ((x) != 0) return -1; \
   } while (0)
 
+/* Optional number in (0, 1]. */
+static int opt_fraction(struct cmn_case *c, const char *path, double def, double *x) {
+  TRY(cmn_case_opt_positive(c, path, def, x));
+  if (*x > 1.0) return cmn_case_fail(c, path, "expected a number in (0, 1], got %g", *x);
+  return 0;
+}
+
 static int opt_vector(struct cmn_case *c, const char *path, int dim, double *x) {
   const double zero[3] = {0.0, 0.0, 0.0};
   x[0] = x[1] = x[2] = 0.0;
@@ -111,11 +118,11 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const hydros[] = {"none", "full", "tangential", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
                           &cfg->vertex_hydro));
-  TRY(cmn_case_opt_double(c, "numerics.cfl", 0.3, 1e-6, 1.0, &cfg->cfl));
-  TRY(cmn_case_opt_double(c, "numerics.viscous_factor", 0.125, 1e-6, 1.0, &cfg->viscous_factor));
-  TRY(cmn_case_opt_double(c, "numerics.force_factor", 0.25, 1e-6, 1.0, &cfg->force_factor));
-  TRY(cmn_case_opt_double(c, "numerics.gamma_factor", 0.05, 1e-6, 1.0, &cfg->gamma_factor));
-  TRY(cmn_case_opt_double(c, "numerics.skin", 0.2, 0.01, 1.0, &cfg->skin_over_h));
+  TRY(opt_fraction(c, "numerics.cfl", 0.3, &cfg->cfl));
+  TRY(opt_fraction(c, "numerics.viscous_factor", 0.125, &cfg->viscous_factor));
+  TRY(opt_fraction(c, "numerics.force_factor", 0.25, &cfg->force_factor));
+  TRY(opt_fraction(c, "numerics.gamma_factor", 0.05, &cfg->gamma_factor));
+  TRY(opt_fraction(c, "numerics.skin", 0.2, &cfg->skin_over_h));
   cfg->dt_max = INFINITY;
   if (cmn_case_has(c, "numerics.dt_max"))
     TRY(cmn_case_get_positive(c, "numerics.dt_max", &cfg->dt_max));

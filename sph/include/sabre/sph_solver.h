@@ -46,6 +46,7 @@ struct sph_nbrs {
   double radius;                     /**< list radius [m] */
   double *grad_gamma_as[3];          /**< per pair of list[SEGMENT] [1/m] */
   double *dist_as;                   /**< per pair: (r_a − r_s)·n_s, distance to the plane [m] */
+  double *term_as;                   /**< per pair: the segment's term of γ_a (γ_a = 1 − Σ) */
   size_t cap_pairs;
   long escaped; /**< after sph_nbrs_gamma: a fluid particle behind its nearest wall, or −1 */
 };
@@ -61,6 +62,14 @@ void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, doubl
  * (fluid is created at least min_wall_distance from the walls).
  */
 void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k);
+/**
+ * Rebuild the lists when the positions have not changed since the last sph_nbrs_gamma() (the
+ * start of a step is the end of the previous one): the pair data are copied from the old rows
+ * instead of recomputed, and γ_a, ∇γ_a re-summed in the new list order, so the result is bitwise
+ * that of sph_nbrs_build() + sph_nbrs_gamma(). Falls back to those if the fluid count changed.
+ */
+void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k,
+                            double skin);
 void sph_nbrs_free(struct sph_nbrs *nb);
 
 /* ---------------------------------------------------------------------------------------------
@@ -196,6 +205,7 @@ struct sph_solver {
   double mass_ref;              /**< fluid + vertex mass at start (diagnostics) */
   double vertex_phi;            /**< vertex layer thickness / Δr of the vertex masses [-] */
   long evaluated_step;          /**< step whose start state sph_solver_evaluate() saw, or −1 */
+  int gamma_current;            /**< nb's wall data are those of the current positions */
 };
 
 /**

@@ -19,6 +19,7 @@ static void reserve_pairs(struct sph_nbrs *nb) {
   for (int c = 0; c < 3; c++)
     nb->grad_gamma_as[c] = cmn_realloc(nb->grad_gamma_as[c], cap * sizeof(double));
   nb->dist_as = cmn_realloc(nb->dist_as, cap * sizeof(double));
+  nb->term_as = cmn_realloc(nb->term_as, cap * sizeof(double));
   nb->cap_pairs = cap;
 }
 
@@ -63,49 +64,111 @@ void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, doubl
   build(nb, s, skin, 1);
 }
 
+/* Wall data of pair p (fluid a, segment j): γ term, ∇γ_as, distance to the element and to its
+ * plane (signed, > 0 on the fluid side). */
+static void pair_wall(const struct sph_system *s, const struct sph_kernel *k, size_t a, size_t j,
+                      double *term, double gs[3], double *dist, double *off) {
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *seg = &s->part[SPH_KIND_SEGMENT];
+  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  struct sph_wall_element e;
+  sph_segment_vertices(s, j, xa, e.x);
+  for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
+  double q[3];
+  *dist = sph_element_distance(s->dim, (const double(*)[3])e.x, xa, q);
+  *off = 0.0;
+  for (int c = 0; c < 3; c++) *off += (xa[c] - q[c]) * e.normal[c];
+  *term = 0.0;
+  gs[0] = gs[1] = gs[2] = 0.0;
+  if (*dist < sph_kernel_support(k)) sph_gamma_element(k, xa, &e, term, gs);
+}
+
+/* γ_a, ∇γ_a and the side test from the pair data of row a (sums in list order, so that reused
+ * and recomputed pair data give the same bits). */
+static int sum_row(struct sph_nbrs *nb, struct sph_parts *f, size_t a, const double *dist) {
+  const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
+  double sum_term = 0.0, g[3] = {0.0, 0.0, 0.0}, dmin = INFINITY, side = 0.0;
+  for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
+    sum_term += nb->term_as[p];
+    for (int c = 0; c < 3; c++) g[c] += nb->grad_gamma_as[c][p];
+    /* Side test against the nearest element(s): outside when behind their summed normals. */
+    if (dist) {
+      if (dist[p] < dmin * (1.0 - 1e-9)) {
+        dmin = dist[p];
+        side = nb->dist_as[p];
+      } else if (dist[p] <= dmin * (1.0 + 1e-9)) {
+        side += nb->dist_as[p];
+      }
+    }
+  }
+  f->gamma[a] = 1.0 - sum_term;
+  for (int c = 0; c < 3; c++) f->grad_gamma[c][a] = g[c];
+  return side < 0.0;
+}
+
 void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k) {
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
-  const double support = sph_kernel_support(k);
+  size_t np = f->n ? nl->offset[f->n] : 0;
+  double *dist = cmn_malloc((np + 1) * sizeof *dist);
   long escaped = -1;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : escaped)
 #endif
   for (size_t a = 0; a < f->n; a++) {
-    double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-    double sum_term = 0.0, g[3] = {0.0, 0.0, 0.0};
-    /* Side test against the nearest element(s): outside when behind their summed normals. */
-    double dmin = INFINITY, side = 0.0;
     for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
-      size_t j = nl->index[p];
-      struct sph_wall_element e;
-      sph_segment_vertices(s, j, xa, e.x);
-      for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
-      double q[3];
-      double dist = sph_element_distance(s->dim, (const double(*)[3])e.x, xa, q);
-      double off = 0.0;
-      for (int c = 0; c < 3; c++) off += (xa[c] - q[c]) * e.normal[c];
-      if (dist < dmin * (1.0 - 1e-9)) {
-        dmin = dist;
-        side = off;
-      } else if (dist <= dmin * (1.0 + 1e-9)) {
-        side += off;
-      }
-      nb->dist_as[p] = off;
-      double term = 0.0, gs[3] = {0.0, 0.0, 0.0};
-      if (dist < support) sph_gamma_element(k, xa, &e, &term, gs);
-      sum_term += term;
-      for (int c = 0; c < 3; c++) {
-        nb->grad_gamma_as[c][p] = gs[c];
-        g[c] += gs[c];
+      double gs[3];
+      pair_wall(s, k, a, nl->index[p], &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
+      for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
+    }
+    if (sum_row(nb, f, a, dist) && (long)a > escaped) escaped = (long)a;
+  }
+  free(dist);
+  nb->escaped = escaped;
+}
+
+void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k,
+                            double skin) {
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  /* Keep the old fluid–segment rows and their pair data. */
+  struct sph_nlist old = nb->list[SPH_KIND_SEGMENT];
+  double *old_g[3] = {nb->grad_gamma_as[0], nb->grad_gamma_as[1], nb->grad_gamma_as[2]};
+  double *old_term = nb->term_as, *old_off = nb->dist_as;
+  if (old.n != f->n || !old_term) {
+    sph_nbrs_build(nb, s, skin);
+    sph_nbrs_gamma(nb, s, k);
+    return;
+  }
+  memset(&nb->list[SPH_KIND_SEGMENT], 0, sizeof old);
+  for (int c = 0; c < 3; c++) nb->grad_gamma_as[c] = NULL;
+  nb->term_as = nb->dist_as = NULL;
+  nb->cap_pairs = 0;
+  build(nb, s, skin, 0);
+  const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64)
+#endif
+  for (size_t a = 0; a < f->n; a++) {
+    for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
+      const size_t j = nl->index[p];
+      size_t q = old.offset[a];
+      while (q < old.offset[a + 1] && old.index[q] != j) q++;
+      if (q < old.offset[a + 1]) {
+        nb->term_as[p] = old_term[q];
+        nb->dist_as[p] = old_off[q];
+        for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = old_g[c][q];
+      } else { /* new in the list: beyond the old radius, but computed rather than assumed */
+        double gs[3], dist;
+        pair_wall(s, k, a, j, &nb->term_as[p], gs, &dist, &nb->dist_as[p]);
+        for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
       }
     }
-    f->gamma[a] = 1.0 - sum_term;
-    for (int c = 0; c < 3; c++) f->grad_gamma[c][a] = g[c];
-    if (side < 0.0 && (long)a > escaped) escaped = (long)a;
+    sum_row(nb, f, a, NULL);
   }
-  nb->escaped = escaped;
+  /* nb->escaped is the one of the evaluation at these positions. */
+  sph_nlist_free(&old);
+  for (int c = 0; c < 3; c++) free(old_g[c]);
+  free(old_term);
+  free(old_off);
 }
 
 void sph_nbrs_free(struct sph_nbrs *nb) {
@@ -114,5 +177,6 @@ void sph_nbrs_free(struct sph_nbrs *nb) {
   sph_nlist_free(&nb->vf);
   for (int c = 0; c < 3; c++) free(nb->grad_gamma_as[c]);
   free(nb->dist_as);
+  free(nb->term_as);
   memset(nb, 0, sizeof *nb);
 }

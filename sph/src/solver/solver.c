@@ -46,8 +46,13 @@ static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * s
 
 /* Lists, γ and ∇γ_as at the current positions. */
 static void neighbours(struct sph_solver *sv) {
-  sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
-  sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+  if (sv->gamma_current) {
+    sph_nbrs_rebuild_reuse(&sv->nb, &sv->sys, &sv->kernel, skin(sv));
+  } else {
+    sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
+    sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+  }
+  sv->gamma_current = 1;
   sph_solver_sync(sv);
 }
 
@@ -332,6 +337,7 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   /* State n: lists, γ^n, boundary values, a^n, D^n, then Δt. */
   if (sv->evaluated_step != sv->step) sph_solver_evaluate(sv);
   sv->evaluated_step = -1;
+  sv->gamma_current = 0; /* positions move from here; the corrector's γ sets it again */
   double dt = fmin(sph_solver_timestep(sv), dt_limit);
   if (!(dt > 0.0)) {
     snprintf(msg, msglen, "step %ld, t = %.9g s: time step %g s is not positive", sv->step + 1,
@@ -373,6 +379,7 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   }
   wrap(sv);
   refresh_gamma(sv);
+  sv->gamma_current = 1;
   continuity(sv, dt);
   if (sqrt(dmax) > 0.5 * skin(sv)) {
     snprintf(msg, msglen,

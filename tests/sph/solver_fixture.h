@@ -49,8 +49,8 @@ enum fixture_walls { FIX_NONE = 0, FIX_CHANNEL = 1, FIX_PERIODIC = 2 };
 static inline void fixture_lattice_offset(struct sph_system *s, int nx, int ny, double dr,
                                           double h_over_dr, enum fixture_walls walls,
                                           double y_offset);
-static inline void fixture_lattice(struct sph_system *s, int nx, int ny, double dr, double h_over_dr,
-                                   enum fixture_walls walls) {
+static inline void fixture_lattice(struct sph_system *s, int nx, int ny, double dr,
+                                   double h_over_dr, enum fixture_walls walls) {
   fixture_lattice_offset(s, nx, ny, dr, h_over_dr, walls, 0.5);
 }
 

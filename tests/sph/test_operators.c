@@ -182,9 +182,10 @@ static void test_interior(void **state) {
   for (int k = 0; k <= 1; k++) {
     struct errors e2 = measure(&a, &lin, k, 0, 2.2, 99), e4 = measure(&b, &lin, k, 0, 2.2, 99);
     struct errors q2 = measure(&a, &quad, k, 0, 2.2, 99), q4 = measure(&b, &quad, k, 0, 2.2, 99);
-    print_message("interior k=%d: h/dr=2 grad %.2e/%.2e div %.2e lap %.2e; h/dr=4 grad %.2e/%.2e "
-                  "div %.2e lap %.2e\n",
-                  k, e2.grad, q2.grad, e2.div, e2.lap, e4.grad, q4.grad, e4.div, e4.lap);
+    print_message(
+        "interior k=%d: h/dr=2 grad %.2e/%.2e div %.2e lap %.2e; h/dr=4 grad %.2e/%.2e "
+        "div %.2e lap %.2e\n",
+        k, e2.grad, q2.grad, e2.div, e2.lap, e4.grad, q4.grad, e4.div, e4.lap);
     assert_true(e2.grad < 1.2e-3 && q2.grad < 1.2e-3 && e2.div < 1.2e-3 && e2.lap < 1.5e-3);
     assert_true(e4.grad < 1e-5 && q4.grad < 1e-5 && e4.div < 1e-5 && e4.lap < 1.5e-5);
   }
@@ -206,9 +207,10 @@ static void test_flat_wall(void **state) {
      * discrete error is quadrature and drops with h/Δr. */
     struct errors e2 = measure(&a, &lin, k, 1, 0.0, 2.0);
     struct errors e4 = measure(&b, &lin, k, 1, 0.0, 2.0);
-    print_message("wall, linear, k=%d: h/dr=2 grad %.2e div %.2e lap %.2e; h/dr=4 grad %.2e div "
-                  "%.2e lap %.2e\n",
-                  k, e2.grad, e2.div, e2.lap, e4.grad, e4.div, e4.lap);
+    print_message(
+        "wall, linear, k=%d: h/dr=2 grad %.2e div %.2e lap %.2e; h/dr=4 grad %.2e div "
+        "%.2e lap %.2e\n",
+        k, e2.grad, e2.div, e2.lap, e4.grad, e4.div, e4.lap);
     assert_true(e2.grad < 0.04 && e2.div < 0.04 && e2.lap < 0.04);
     assert_true(e4.grad < e2.grad / 3 && e4.div < e2.div / 3 && e4.lap < e2.lap / 3);
     /* Quadratic fields: the truncated kernel averages ∇f off-centre, an O(h) error. */
@@ -335,10 +337,8 @@ static void test_cells_vs_naive(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_interior),
-      cmocka_unit_test(test_flat_wall),
-      cmocka_unit_test(test_constant_defect),
-      cmocka_unit_test(test_first_row_sign),
+      cmocka_unit_test(test_interior),        cmocka_unit_test(test_flat_wall),
+      cmocka_unit_test(test_constant_defect), cmocka_unit_test(test_first_row_sign),
       cmocka_unit_test(test_cells_vs_naive),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

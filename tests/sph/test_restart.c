@@ -5,12 +5,12 @@
  * read into a fresh solver + N − k steps, give bitwise equal particle stores.
  */
 #define _POSIX_C_SOURCE 200809L /* fork, kill, nanosleep, mkdtemp */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <signal.h>
-#include <time.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "sabre/common.h"
@@ -125,8 +125,8 @@ static void test_command_restart(void **state) {
   char ck[700];
   snprintf(ck, sizeof ck, "%s/checkpoint.bin", b);
   assert_int_equal(run(b, NULL, ck), 0);
-  const char *files[] = {"diagnostics.csv", "probes.csv", "forces.csv", "checkpoint.bin",
-                         "particles.pvd", "fluid_000003.vtu"};
+  const char *files[] = {"diagnostics.csv", "probes.csv",    "forces.csv",
+                         "checkpoint.bin",  "particles.pvd", "fluid_000003.vtu"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
     char pa[800], pb[800];
     snprintf(pa, sizeof pa, "%s/%s", a, files[i]);

@@ -59,7 +59,8 @@ static void test_momentum_periodic(void **state) {
     double p0[3], p1[3], scale;
     momentum(&sv, p0, &scale);
     char msg[512];
-    for (int n = 0; n < 10; n++) assert_int_equal(sph_solver_step(&sv, INFINITY, msg, sizeof msg), 0);
+    for (int n = 0; n < 10; n++)
+      assert_int_equal(sph_solver_step(&sv, INFINITY, msg, sizeof msg), 0);
     momentum(&sv, p1, &scale);
     print_message("k=%d: momentum change (%.3e, %.3e) for sum m|v| = %.3e\n", k, p1[0] - p0[0],
                   p1[1] - p0[1], scale);
@@ -154,8 +155,8 @@ static void test_skew_adjoint(void **state) {
     sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
     double *f[SPH_NKINDS], *B[SPH_NKINDS][3];
     random_fields(&sv, 5, f, B, 0);
-    double sa = sph_skew_adjoint_defect(&sv, (const double *const *)f,
-                                        (const double *const(*)[3])B);
+    double sa =
+        sph_skew_adjoint_defect(&sv, (const double *const *)f, (const double *const(*)[3])B);
     /* scale: the same sum with |·| on each product */
     const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
     double scale = 0.0;
@@ -186,13 +187,13 @@ static void test_skew_adjoint(void **state) {
     sph_system_free(&s);
     double *f[SPH_NKINDS], *B[SPH_NKINDS][3];
     random_fields(&sv, 5, f, B, 1);
-    double sa = sph_skew_adjoint_defect(&sv, (const double *const *)f,
-                                        (const double *const(*)[3])B);
+    double sa =
+        sph_skew_adjoint_defect(&sv, (const double *const *)f, (const double *const(*)[3])B);
     const double H = sv.sys.domain.hi[1], L = sv.sys.domain.hi[0];
     const double exact = (1.0 + H) * H * L;
     rel[r] = fabs(sa - exact) / exact;
-    print_message("channel %dx%d: SA = %.6f, -int f B.n = %.6f (rel. diff %.3e)\n", n, n, sa,
-                  exact, rel[r]);
+    print_message("channel %dx%d: SA = %.6f, -int f B.n = %.6f (rel. diff %.3e)\n", n, n, sa, exact,
+                  rel[r]);
     free_fields(f, B);
     sph_solver_free(&sv);
   }
@@ -340,8 +341,9 @@ static void test_hydrostatic_floor(void **state) {
   sph_system_free(&s);
   free(wall);
   free(edge);
-  const double H = ny * dr, p_floor = rmn_eos_pressure(&sv.eos, sv.sys.part[SPH_KIND_FLUID].rho[0]) +
-                                      0.5 * dr * 9.81 * sv.sys.part[SPH_KIND_FLUID].rho[0];
+  const double H = ny * dr,
+               p_floor = rmn_eos_pressure(&sv.eos, sv.sys.part[SPH_KIND_FLUID].rho[0]) +
+                         0.5 * dr * 9.81 * sv.sys.part[SPH_KIND_FLUID].rho[0];
   const struct sph_parts *v = &sv.sys.part[SPH_KIND_VERTEX];
   for (size_t i = 0; i < v->n; i++)
     if (v->x[1][i] < 0.5 * dr) assert_rel(sv.p[SPH_KIND_VERTEX][i], p_floor, 2e-3);

@@ -47,10 +47,11 @@ static void test_defaults(void **state) {
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
-  assert_int_equal(read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
-                             "probes: {pressure: [[0.5, 0.5]], gauges: [[0.2, 0], [0.8, 0]]}\n",
-                             &cfg, msg, sizeof msg),
-                   0);
+  assert_int_equal(
+      read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
+                "probes: {pressure: [[0.5, 0.5]], gauges: [[0.2, 0], [0.8, 0]]}\n",
+                &cfg, msg, sizeof msg),
+      0);
   assert_true(cfg.gravity[1] == -9.81 && cfg.nforces == 1 && cfg.forces[0].wall == 1);
   assert_true(cfg.forces[0].nedges == 2 && cfg.forces[0].edges[1] == 3);
   assert_true(cfg.nprobes == 1 && cfg.ngauges == 2 && cfg.gauges[1][0] == 0.8);

@@ -112,8 +112,6 @@ double sph_op_div(const struct sph_op *op, double k, const double *const B[SPH_N
 void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
                 const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
                 double out[3]);
-/** Shepard sum α_a = Σ_{b∈F} V_b w_ab, M(6) at fluid particle a (γ-free interpolation check). */
-double sph_op_shepard(const struct sph_op *op, size_t a);
 
 /* ---------------------------------------------------------------------------------------------
  * Configuration (docs/sph-case-file.md)
@@ -130,9 +128,9 @@ enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TAN
 
 struct sph_force_group {
   char name[64];
-  int wall;          /**< index into geometry.walls */
-  int nedges;        /**< 0: the whole wall */
-  long edges[64];    /**< 1-based element numbers within the wall (source_index) */
+  int wall;       /**< index into geometry.walls */
+  int nedges;     /**< 0: the whole wall */
+  long edges[64]; /**< 1-based element numbers within the wall (source_index) */
 };
 
 struct sph_config {
@@ -141,19 +139,19 @@ struct sph_config {
   double gravity[3];
   /* initial state */
   double u0[3];
-  int hydrostatic;       /**< initial pressure hydrostatic below free_surface */
-  double free_surface;   /**< level of p = 0 along −g [m] (NaN: top of the fluid + Δr/2) */
+  int hydrostatic;     /**< initial pressure hydrostatic below free_surface */
+  double free_surface; /**< level of p = 0 along −g [m] (NaN: top of the fluid + Δr/2) */
   /* numerics */
-  double grad_k;         /**< k of M(37)/M(38) */
-  int diffusion;         /**< enum sph_diffusion */
-  int diffusion_speed;   /**< enum sph_diffusion_speed */
-  double eta;            /**< η of M(48) */
-  double brezzi_lambda;  /**< Λ, J §II.C */
-  int gravity_correction;/**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
-                              (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
-  int vertex_hydro;      /**< enum sph_vertex_hydro */
+  double grad_k;          /**< k of M(37)/M(38) */
+  int diffusion;          /**< enum sph_diffusion */
+  int diffusion_speed;    /**< enum sph_diffusion_speed */
+  double eta;             /**< η of M(48) */
+  double brezzi_lambda;   /**< Λ, J §II.C */
+  int gravity_correction; /**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
+                               (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
+  int vertex_hydro;       /**< enum sph_vertex_hydro */
   double cfl, viscous_factor, force_factor, gamma_factor;
-  double skin_over_h;    /**< neighbour-list skin / h */
+  double skin_over_h; /**< neighbour-list skin / h */
   double dt_max;
   double density_band[2]; /**< stop when ρ/ρ0 leaves [lo, hi] */
   /* time and output */
@@ -161,7 +159,7 @@ struct sph_config {
   long diagnostics_every; /**< steps between rows of diagnostics.csv */
   long checkpoint_steps;  /**< 0: none */
   double checkpoint_minutes;
-  long max_steps;         /**< stop (with a checkpoint) after this many steps; 0: no limit */
+  long max_steps; /**< stop (with a checkpoint) after this many steps; 0: no limit */
   /* probes and forces */
   int nprobes, ngauges;
   double probes[SPH_MAX_PROBES][3];
@@ -191,29 +189,29 @@ struct sph_solver {
   long step;
   double dt;
   /* per-particle solver fields, per kind, capacity cap[kind] */
-  double *p[SPH_NKINDS];        /**< pressure [Pa] */
-  double *acc[3];               /**< fluid acceleration [m/s²] */
-  double *x0[3], *v0[3];        /**< fluid state at the start of the step */
-  double *rho_n, *gamma_n;      /**< fluid ρ^n, γ^n */
-  double *mu[SPH_NKINDS];       /**< dynamic viscosity ν ρ [Pa s] */
-  double *diff;                 /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
-  double *wall_flux[3];         /**< per F–S pair: viscous wall flux, M(19–20) */
+  double *p[SPH_NKINDS];   /**< pressure [Pa] */
+  double *acc[3];          /**< fluid acceleration [m/s²] */
+  double *x0[3], *v0[3];   /**< fluid state at the start of the step */
+  double *rho_n, *gamma_n; /**< fluid ρ^n, γ^n */
+  double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
+  double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
+  double *wall_flux[3];    /**< per F–S pair: viscous wall flux, M(19–20) */
   size_t cap_flux;
-  int *seg_group;               /**< force group of each segment (−1 none) */
-  int *vert_group;              /**< force group of each vertex (−1 none) */
+  int *seg_group;  /**< force group of each segment (−1 none) */
+  int *vert_group; /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
-  double mass_ref;              /**< fluid + vertex mass at start (diagnostics) */
-  double vertex_phi;            /**< vertex layer thickness / Δr of the vertex masses [-] */
-  long evaluated_step;          /**< step whose start state sph_solver_evaluate() saw, or −1 */
-  int gamma_current;            /**< nb's wall data are those of the current positions */
+  double vertex_phi;   /**< vertex layer thickness / Δr of the vertex masses [-] */
+  long evaluated_step; /**< step whose start state sph_solver_evaluate() saw, or −1 */
+  int gamma_current;   /**< nb's wall data are those of the current positions */
 };
 
 /**
  * Set up a solver on a filled system (moved into sv; s is left empty): kernel, EOS, initial
  * density and pressure (uniform or hydrostatic), masses m_a = ρ_a Δr^d, vertex masses
  * m_v = φ ρ_v A_v Δr (A_v: the vertex's share of its segments) with φ such that the summation
- * Σ_b m_b w_ab best equals γ_a ρ_a for the initial fluid (least squares), vertex and segment values. mesh_source (may be NULL): per segment the index of its wall
- * in geometry.walls and its element number there, for force groups.
+ * Σ_b m_b w_ab best equals γ_a ρ_a for the initial fluid (least squares), vertex and segment
+ * values. mesh_source (may be NULL): per segment the index of its wall in geometry.walls and its
+ * element number there, for force groups.
  */
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,
                      const int *seg_wall, const long *seg_edge);

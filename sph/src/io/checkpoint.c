@@ -16,16 +16,20 @@ static const char magic[16] = "SABRE-SPH-CKPT2";
 
 static size_t type_size(enum sph_field_type t) {
   switch (t) {
-    case SPH_FIELD_DOUBLE: return sizeof(double);
-    case SPH_FIELD_INT64: return sizeof(int64_t);
-    case SPH_FIELD_UINT8: return sizeof(uint8_t);
-    case SPH_FIELD_SIZE: return sizeof(size_t);
+    case SPH_FIELD_DOUBLE:
+      return sizeof(double);
+    case SPH_FIELD_INT64:
+      return sizeof(int64_t);
+    case SPH_FIELD_UINT8:
+      return sizeof(uint8_t);
+    case SPH_FIELD_SIZE:
+      return sizeof(size_t);
   }
   return 0;
 }
 
-#define W(ptr, size, count)                                              \
-  do {                                                                   \
+#define W(ptr, size, count)                                                      \
+  do {                                                                           \
     if ((count) > 0 && fwrite((ptr), (size), (count), fp) != (count)) goto fail; \
   } while (0)
 
@@ -47,8 +51,8 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   W(&s->dr, sizeof(double), 1);
   W(&s->h, sizeof(double), 1);
   /* the domain member by member: no struct padding in the file */
-  int32_t ddim = s->domain.dim, per[3] = {s->domain.periodic[0], s->domain.periodic[1],
-                                          s->domain.periodic[2]};
+  int32_t ddim = s->domain.dim,
+          per[3] = {s->domain.periodic[0], s->domain.periodic[1], s->domain.periodic[2]};
   W(&ddim, sizeof ddim, 1);
   W(s->domain.lo, sizeof(double), 3);
   W(s->domain.hi, sizeof(double), 3);
@@ -96,8 +100,8 @@ fail : {
 }
 #undef W
 
-#define R(ptr, size, count)                                                   \
-  do {                                                                        \
+#define R(ptr, size, count)                                                           \
+  do {                                                                                \
     if ((count) > 0 && fread((ptr), (size), (count), fp) != (count)) goto short_read; \
   } while (0)
 
@@ -133,8 +137,8 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   for (int i = 0; i < 3; i++) dom.periodic[i] = per[i];
   if (dim != s->dim || dr != s->dr || h != s->h) {
     snprintf(msg, msglen,
-             "%s: written for dimension %d, dr = %g m, h = %g m; the case has %d, %g m, %g m",
-             path, (int)dim, dr, h, s->dim, s->dr, s->h);
+             "%s: written for dimension %d, dr = %g m, h = %g m; the case has %d, %g m, %g m", path,
+             (int)dim, dr, h, s->dim, s->dr, s->h);
     fclose(fp);
     return -1;
   }

@@ -90,7 +90,8 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
   const struct sph_system *s = &sv->sys;
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
   const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
-  const struct sph_nlist *nlv = &sv->nb.list[SPH_KIND_VERTEX], *nls = &sv->nb.list[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nlv = &sv->nb.list[SPH_KIND_VERTEX],
+                         *nls = &sv->nb.list[SPH_KIND_SEGMENT];
   for (int g = 0; g < sv->cfg.nforces; g++) out[g][0] = out[g][1] = out[g][2] = 0.0;
   /* Pressure: the integral of the segment pressure over the group, −Σ_s p_s |s| n_s (M §8). The
    * momentum equation's pressure terms are not used: with γ_a ≠ 1 the fluid–fluid pair terms do

@@ -115,17 +115,3 @@ void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = l[c] * inv_gamma;
 }
-
-double sph_op_shepard(const struct sph_op *op, size_t a) {
-  const struct sph_system *s = op->sys;
-  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
-  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_FLUID];
-  double sum = pa->mass[a] / pa->rho[a] * sph_kernel_w_inline(op->kernel, 0.0);
-  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-    size_t b = nl->index[q];
-    struct sph_pair pr;
-    if (!sph_pair_eval(op->kernel, s, pa, a, pa, b, &pr)) continue;
-    sum += pa->mass[b] / pa->rho[b] * pr.w;
-  }
-  return sum;
-}

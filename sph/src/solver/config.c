@@ -8,8 +8,8 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-#define TRY(x)            \
-  do {                    \
+#define TRY(x)               \
+  do {                       \
     if ((x) != 0) return -1; \
   } while (0)
 
@@ -56,8 +56,10 @@ static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
     snprintf(p, sizeof p, "forces[%d].name", i);
     TRY(cmn_case_get_string(c, p, &name));
     if (strlen(name) == 0 || strlen(name) >= sizeof g->name || strpbrk(name, ", \"\n"))
-      return cmn_case_fail(c, p, "expected a name of 1 to %zu characters without spaces, commas "
-                           "or quotes", sizeof g->name - 1);
+      return cmn_case_fail(c, p,
+                           "expected a name of 1 to %zu characters without spaces, commas "
+                           "or quotes",
+                           sizeof g->name - 1);
     for (int j = 0; j < i; j++)
       if (strcmp(cfg->forces[j].name, name) == 0)
         return cmn_case_fail(c, p, "duplicate force group name '%s'", name);
@@ -132,8 +134,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
     return cmn_case_fail(c, "numerics.density_band", "expected [lo, hi] with 0 < lo < 1 < hi");
   /* time and output */
   TRY(cmn_case_get_positive(c, "time.end", &cfg->t_end));
-  TRY(cmn_case_opt_positive(c, "time.output_interval", cfg->t_end / 100.0,
-                            &cfg->output_interval));
+  TRY(cmn_case_opt_positive(c, "time.output_interval", cfg->t_end / 100.0, &cfg->output_interval));
   TRY(cmn_case_opt_long(c, "time.diagnostics_every", 1, 1, 1000000000L, &cfg->diagnostics_every));
   TRY(cmn_case_opt_long(c, "time.checkpoint_steps", 0, 0, 1000000000L, &cfg->checkpoint_steps));
   TRY(cmn_case_opt_double(c, "time.checkpoint_minutes", 0.0, 0.0, INFINITY,

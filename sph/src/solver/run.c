@@ -86,9 +86,8 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
                        const struct sph_run_counters *rc, int restart) {
   const struct sph_config *cfg = &sv->cfg;
   const int dim = sv->sys.dim;
-  static const char *const dnames[] = {"time",      "dt",        "particles", "mass",
-                                       "kinetic",   "potential", "internal",  "max_speed",
-                                       "max_drho"};
+  static const char *const dnames[] = {"time",      "dt",       "particles", "mass",    "kinetic",
+                                       "potential", "internal", "max_speed", "max_drho"};
   rf->diag = csv_open(rf->dir, "diagnostics.csv", 9, dnames, restart, sv->time);
   int np = 1 + cfg->nprobes + cfg->ngauges;
   char **pn = cmn_malloc((size_t)np * sizeof *pn);
@@ -101,9 +100,9 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
     pn[1 + cfg->nprobes + i] = cmn_malloc(32);
     snprintf(pn[1 + cfg->nprobes + i], 32, "eta%d", i);
   }
-  rf->probes = np > 1 ? csv_open(rf->dir, "probes.csv", np, (const char *const *)pn, restart,
-                                 sv->time)
-                      : NULL;
+  rf->probes = np > 1
+                   ? csv_open(rf->dir, "probes.csv", np, (const char *const *)pn, restart, sv->time)
+                   : NULL;
   for (int i = 1; i < np; i++) free(pn[i]);
   free(pn);
   int nf = 1 + dim * cfg->nforces;
@@ -114,9 +113,9 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
       fn[1 + g * dim + c] = cmn_malloc(96);
       snprintf(fn[1 + g * dim + c], 96, "%s_f%c", cfg->forces[g].name, "xyz"[c]);
     }
-  rf->forces = nf > 1 ? csv_open(rf->dir, "forces.csv", nf, (const char *const *)fn, restart,
-                                 sv->time)
-                      : NULL;
+  rf->forces = nf > 1
+                   ? csv_open(rf->dir, "forces.csv", nf, (const char *const *)fn, restart, sv->time)
+                   : NULL;
   for (int i = 1; i < nf; i++) free(fn[i]);
   free(fn);
   if (sph_output_open(&rf->vtu, rf->dir, "particles") != 0)
@@ -191,9 +190,10 @@ static void segment_sources(const struct sph_geometry *g, struct cmn_case *c, in
   *edge = cmn_malloc((m->nelem + 1) * sizeof **edge);
   int nw = cmn_case_seq_length(c, "geometry.walls");
   if (m->nsources != (nw > 0 ? nw : 0) && cmn_case_seq_length(c, "forces") > 0)
-    cmn_input_error("%s: forces: the walls could not be matched to geometry.walls entries (%d "
-                    "sources for %d walls)",
-                    cmn_case_name(c), m->nsources, nw);
+    cmn_input_error(
+        "%s: forces: the walls could not be matched to geometry.walls entries (%d "
+        "sources for %d walls)",
+        cmn_case_name(c), m->nsources, nw);
   for (size_t e = 0; e < m->nelem; e++) {
     (*wall)[e] = m->source[e];
     (*edge)[e] = m->source_index[e];
@@ -236,15 +236,15 @@ int sph_cmd_run(int argc, char **argv) {
 #ifdef _OPENMP
   if (threads > 0) omp_set_num_threads((int)threads);
 #else
-  if (threads > 1) cmn_warning("--threads %ld: built without OpenMP, running on one thread", threads);
+  if (threads > 1)
+    cmn_warning("--threads %ld: built without OpenMP, running on one thread", threads);
 #endif
 
   char err[2048];
   struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
   if (!c) cmn_input_error("%s", err);
   for (int i = 0; i < nsets; i++)
-    if (cmn_case_set(c, sets[i]) != 0)
-      cmn_input_error("--set %s: %s", sets[i], cmn_case_error(c));
+    if (cmn_case_set(c, sets[i]) != 0) cmn_input_error("--set %s: %s", sets[i], cmn_case_error(c));
   free(sets);
   struct sph_geometry g;
   sph_geometry_read(&g, c);
@@ -258,7 +258,8 @@ int sph_cmd_run(int argc, char **argv) {
 
   struct sph_system s;
   sph_system_from_geometry(&s, &g);
-  if (s.part[SPH_KIND_FLUID].n == 0) cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
+  if (s.part[SPH_KIND_FLUID].n == 0)
+    cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
   int *seg_wall;
   long *seg_edge;
   segment_sources(&g, c, &seg_wall, &seg_edge);
@@ -326,9 +327,10 @@ int sph_cmd_run(int argc, char **argv) {
     if (stop_signal) {
       flush_files(&rf);
       checkpoint(sv, &rc, output);
-      cmn_message("signal %d: checkpoint written at step %ld, t = %.9g s; continue with "
-                  "--restart %s/checkpoint.bin",
-                  (int)stop_signal, sv->step, sv->time, output);
+      cmn_message(
+          "signal %d: checkpoint written at step %ld, t = %.9g s; continue with "
+          "--restart %s/checkpoint.bin",
+          (int)stop_signal, sv->step, sv->time, output);
       status = 128 + (int)stop_signal;
       break;
     }

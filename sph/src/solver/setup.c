@@ -11,8 +11,8 @@
 #include "sabre/sph_solver.h"
 
 /* Hydrostatic pressure at depth d ≥ 0 below the level of p = 0, exact for the Tait EOS:
- * dp/dd = ρ(p) |g|  ⇒  p = b [(1 + (ξ−1) |g| d / c0²)^(ξ/(ξ−1)) − 1]  (ξ = 1: b (e^{|g|d/c0²} − 1)),
- * b = ρ0 c0²/ξ. */
+ * dp/dd = ρ(p) |g|  ⇒  p = b [(1 + (ξ−1) |g| d / c0²)^(ξ/(ξ−1)) − 1]  (ξ = 1: b (e^{|g|d/c0²} −
+ * 1)), b = ρ0 c0²/ξ. */
 static double hydrostatic_pressure(const struct rmn_eos *e, double g, double d) {
   const double c2 = e->c0 * e->c0;
   if (e->isothermal) return e->b * expm1(g * d / c2);
@@ -20,12 +20,12 @@ static double hydrostatic_pressure(const struct rmn_eos *e, double g, double d) 
 }
 
 /*
- * Vertex masses m_v = φ ρ_v A_v Δr, A_v the vertex's share of its segments' measure (Σ_{s∋v} |s|/d):
- * a wall layer φΔr thick, with the one scalar φ fitted by least squares so that the summation
- * density of the fluid at its initial positions equals its initial density,
- *   min_φ Σ_{a∈F} (γ_a ρ_a − Σ_{b∈F} m_b w_ab − φ z_a)²,  z_a = Σ_v ρ_v A_v Δr w_av.
- * (A least-squares fit of every vertex mass is ill-posed in 3D with h/Δr = 1.3: the masses
- * oscillate by orders of magnitude.) The time-summation continuity then starts consistently.
+ * Vertex masses m_v = φ ρ_v A_v Δr, A_v the vertex's share of its segments' measure (Σ_{s∋v}
+ * |s|/d): a wall layer φΔr thick, with the one scalar φ fitted by least squares so that the
+ * summation density of the fluid at its initial positions equals its initial density, min_φ Σ_{a∈F}
+ * (γ_a ρ_a − Σ_{b∈F} m_b w_ab − φ z_a)²,  z_a = Σ_v ρ_v A_v Δr w_av. (A least-squares fit of every
+ * vertex mass is ill-posed in 3D with h/Δr = 1.3: the masses oscillate by orders of magnitude.) The
+ * time-summation continuity then starts consistently.
  */
 static void vertex_masses(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
@@ -110,9 +110,6 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_solver_boundary_values(sv);
 
   sv->evaluated_step = -1;
-  sv->mass_ref = 0.0;
-  for (size_t a = 0; a < f->n; a++) sv->mass_ref += f->mass[a];
-  for (size_t i = 0; i < v->n; i++) sv->mass_ref += v->mass[i];
 
   /* Force groups: a segment belongs to the first group naming its wall (and element); a vertex
    * to the group of the first segment using it. */
@@ -126,7 +123,8 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
       const struct sph_force_group *fg = &cfg->forces[g];
       if (fg->wall != seg_wall[j]) continue;
       int match = fg->nedges == 0;
-      for (int e = 0; e < fg->nedges && !match; e++) match = seg_edge && fg->edges[e] == seg_edge[j];
+      for (int e = 0; e < fg->nedges && !match; e++)
+        match = seg_edge && fg->edges[e] == seg_edge[j];
       if (match) sv->seg_group[j] = g;
     }
     for (int k = 0; k < sys->dim; k++) {

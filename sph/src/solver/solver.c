@@ -189,8 +189,8 @@ void sph_solver_forces(struct sph_solver *sv) {
       double dv[3], z = sv->nb.dist_as[q];
       for (int c = 0; c < 3; c++) dv[c] = f->v[c][a] - sg->v[c][j];
       const double dn = dot3(dv, n);
-      const double coef = (sv->mu[SPH_KIND_SEGMENT][j] + sv->mu[SPH_KIND_FLUID][a]) /
-                          (z > zmin ? z : zmin);
+      const double coef =
+          (sv->mu[SPH_KIND_SEGMENT][j] + sv->mu[SPH_KIND_FLUID][a]) / (z > zmin ? z : zmin);
       for (int c = 0; c < 3; c++) sv->wall_flux[c][q] = coef * (dv[c] - dn * n[c]);
     }
   }
@@ -209,8 +209,7 @@ void sph_solver_forces(struct sph_solver *sv) {
     sph_op_grad(&op, sv->cfg.grad_k, pk, a, gp);
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     const double inv_rho = 1.0 / f->rho[a];
-    for (int c = 0; c < 3; c++)
-      sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];
+    for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];
     sv->diff[a] = diffusion_rate(sv, a);
   }
 }
@@ -293,8 +292,10 @@ static void wrap(struct sph_solver *sv) {
     const double lo = d->lo[c], len = d->hi[c] - d->lo[c];
     for (size_t a = 0; a < f->n; a++) {
       double x = f->x[c][a];
-      if (x < lo) x += len;
-      else if (x >= lo + len) x -= len;
+      if (x < lo)
+        x += len;
+      else if (x >= lo + len)
+        x -= len;
       f->x[c][a] = x;
     }
   }
@@ -316,8 +317,8 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
       snprintf(msg, msglen,
                "step %ld, t = %.9g s: fluid particle id %lld (index %zu) at (%.9g, %.9g, %.9g): "
                "%s (rho/rho0 = %.9g, v = (%.6g, %.6g, %.6g))",
-               step, sv->time, (long long)f->id[a], a, f->x[0][a], f->x[1][a], f->x[2][a], what,
-               r, f->v[0][a], f->v[1][a], f->v[2][a]);
+               step, sv->time, (long long)f->id[a], a, f->x[0][a], f->x[1][a], f->x[2][a], what, r,
+               f->v[0][a], f->v[1][a], f->v[2][a]);
       return -1;
     }
   }

@@ -216,7 +216,9 @@ struct sph_solver {
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,
                      const int *seg_wall, const long *seg_edge);
 void sph_solver_free(struct sph_solver *sv);
-/** Grow the solver's per-particle arrays to the store's sizes (after creation of particles). */
+/** After the store changed between steps (particles created or removed, positions or masses set
+ *  by hand): grow the solver's per-particle arrays to the store's sizes and drop the cached
+ *  evaluation and wall data, so that the next step starts from the store as it is. */
 void sph_solver_sync(struct sph_solver *sv);
 
 /** Lists, γ, boundary values and forces of the current state (what a step starts with; also

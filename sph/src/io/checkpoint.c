@@ -177,8 +177,6 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   }
   fclose(fp);
   sph_solver_sync(sv);
-  sv->evaluated_step = -1;
-  sv->gamma_current = 0;
   return 0;
 short_read:
   snprintf(msg, msglen, "%s: truncated or corrupt checkpoint", path);

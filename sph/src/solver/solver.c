@@ -16,7 +16,8 @@
 
 static double *grow(double *p, size_t cap) { return cmn_realloc(p, (cap ? cap : 1) * sizeof *p); }
 
-void sph_solver_sync(struct sph_solver *sv) {
+/* Grow the per-particle arrays to the store's and the lists' sizes. */
+static void grow_arrays(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++) {
     size_t n = sv->sys.part[k].n;
     if (n <= sv->cap[k] && sv->p[k]) continue;
@@ -42,6 +43,12 @@ void sph_solver_sync(struct sph_solver *sv) {
   }
 }
 
+void sph_solver_sync(struct sph_solver *sv) {
+  grow_arrays(sv);
+  sv->evaluated_step = -1;
+  sv->gamma_current = 0;
+}
+
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
 
 /* Lists, γ and ∇γ_as at the current positions. */
@@ -53,7 +60,7 @@ static void neighbours(struct sph_solver *sv) {
     sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
   }
   sv->gamma_current = 1;
-  sph_solver_sync(sv);
+  grow_arrays(sv);
 }
 
 static void refresh_gamma(struct sph_solver *sv) { sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel); }

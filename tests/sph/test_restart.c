@@ -163,9 +163,7 @@ static void test_command_restart(void **state) {
   assert_int_equal(system(cmd), 0);
 }
 
-static void test_library_restart(void **state) {
-  (void)state;
-  sabre_fp_traps_on();
+static void library_restart(int gamma_dynamic) {
   struct sph_solver x, y;
   for (int i = 0; i < 2; i++) {
     struct sph_system s;
@@ -176,6 +174,7 @@ static void test_library_restart(void **state) {
     cfg.hydrostatic = 1;
     cfg.nu = 1e-4;
     cfg.u0[0] = 0.3;
+    cfg.gamma_dynamic = gamma_dynamic;
     sph_solver_init(i ? &y : &x, &cfg, &s, NULL, NULL);
     sph_system_free(&s);
   }
@@ -201,6 +200,7 @@ static void test_library_restart(void **state) {
   const struct sph_parts *px = &x.sys.part[SPH_KIND_FLUID], *py = &y.sys.part[SPH_KIND_FLUID];
   assert_int_equal(px->n, py->n);
   assert_memory_equal(px->rho, py->rho, px->n * sizeof(double));
+  assert_memory_equal(px->gamma, py->gamma, px->n * sizeof(double));
   for (int c = 0; c < 2; c++) {
     assert_memory_equal(px->x[c], py->x[c], px->n * sizeof(double));
     assert_memory_equal(px->v[c], py->v[c], px->n * sizeof(double));
@@ -216,6 +216,14 @@ static void test_library_restart(void **state) {
   free(rc.output_times);
   sph_solver_free(&x);
   sph_solver_free(&y);
+}
+
+/* Both forms of γ: with the dynamic one, γ is state and restored from the checkpoint. */
+static void test_library_restart(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  library_restart(0);
+  library_restart(1);
 }
 
 int main(void) {

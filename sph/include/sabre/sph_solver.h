@@ -150,6 +150,7 @@ struct sph_config {
   int gravity_correction; /**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
                                (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
   int vertex_hydro;       /**< enum sph_vertex_hydro */
+  int gamma_dynamic;      /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   double dt_max;
@@ -193,6 +194,7 @@ struct sph_solver {
   double *acc[3];          /**< fluid acceleration [m/s²] */
   double *x0[3], *v0[3];   /**< fluid state at the start of the step */
   double *rho_n, *gamma_n; /**< fluid ρ^n, γ^n */
+  double *grad_gamma_n[3]; /**< fluid ∇γ^n (for the dynamic γ) */
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
   double *wall_flux[3];    /**< per F–S pair: viscous wall flux, M(19–20) */

@@ -120,6 +120,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const hydros[] = {"none", "full", "tangential", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
                           &cfg->vertex_hydro));
+  static const char *const gammas[] = {"analytic", "dynamic", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.gamma", gammas, 0, &cfg->gamma_dynamic));
   TRY(opt_fraction(c, "numerics.cfl", 0.3, &cfg->cfl));
   TRY(opt_fraction(c, "numerics.viscous_factor", 0.125, &cfg->viscous_factor));
   TRY(opt_fraction(c, "numerics.force_factor", 0.25, &cfg->force_factor));

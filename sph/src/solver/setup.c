@@ -143,6 +143,7 @@ void sph_solver_free(struct sph_solver *sv) {
     free(sv->acc[c]);
     free(sv->x0[c]);
     free(sv->v0[c]);
+    free(sv->grad_gamma_n[c]);
     free(sv->wall_flux[c]);
   }
   free(sv->rho_n);

@@ -29,6 +29,7 @@ static void grow_arrays(struct sph_solver *sv) {
         sv->acc[c] = grow(sv->acc[c], cap);
         sv->x0[c] = grow(sv->x0[c], cap);
         sv->v0[c] = grow(sv->v0[c], cap);
+        sv->grad_gamma_n[c] = grow(sv->grad_gamma_n[c], cap);
       }
       sv->rho_n = grow(sv->rho_n, cap);
       sv->gamma_n = grow(sv->gamma_n, cap);
@@ -53,6 +54,10 @@ static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * s
 
 /* Lists, γ and ∇γ_as at the current positions. */
 static void neighbours(struct sph_solver *sv) {
+  /* With the dynamic γ, γ is state: keep it through the lists' closed-form evaluation. */
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const int keep = sv->cfg.gamma_dynamic && sv->cap[SPH_KIND_FLUID] >= f->n && sv->gamma_n;
+  if (keep) memcpy(sv->gamma_n, f->gamma, f->n * sizeof(double));
   if (sv->gamma_current) {
     sph_nbrs_rebuild_reuse(&sv->nb, &sv->sys, &sv->kernel, skin(sv));
   } else {
@@ -61,6 +66,22 @@ static void neighbours(struct sph_solver *sv) {
   }
   sv->gamma_current = 1;
   grow_arrays(sv);
+  if (keep) memcpy(f->gamma, sv->gamma_n, f->n * sizeof(double));
+}
+
+/* Dynamic γ, M(4), by the trapezoidal rule from the start of the step: the particles moved by
+ * dt (v_old + v_new)/2, and ∇γ is the closed form at both ends. */
+static void gamma_dynamic(struct sph_solver *sv, const double *const v_new[3], double dt) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const int dim = sv->sys.dim;
+  for (size_t a = 0; a < f->n; a++) {
+    const double v_old[3] = {sv->v0[0][a], sv->v0[1][a], sv->v0[2][a]};
+    const double vn[3] = {v_new[0][a], v_new[1][a], v_new[2][a]};
+    const double g_old[3] = {sv->grad_gamma_n[0][a], sv->grad_gamma_n[1][a],
+                             sv->grad_gamma_n[2][a]};
+    const double g_new[3] = {f->grad_gamma[0][a], f->grad_gamma[1][a], f->grad_gamma[2][a]};
+    f->gamma[a] = sph_gamma_dynamic_step(sv->gamma_n[a], v_old, g_old, vn, g_new, dim, dt);
+  }
 }
 
 static void refresh_gamma(struct sph_solver *sv) { sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel); }
@@ -360,6 +381,7 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   }
   memcpy(sv->rho_n, f->rho, n * sizeof(double));
   memcpy(sv->gamma_n, f->gamma, n * sizeof(double));
+  for (int c = 0; c < 3; c++) memcpy(sv->grad_gamma_n[c], f->grad_gamma[c], n * sizeof(double));
 
   /* Predictor to t + Δt/2. */
   for (int c = 0; c < 3; c++)
@@ -369,6 +391,7 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
     }
   wrap(sv);
   refresh_gamma(sv);
+  if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
   continuity(sv, 0.5 * dt);
   sph_solver_boundary_values(sv);
   sph_solver_forces(sv);
@@ -388,6 +411,7 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   wrap(sv);
   refresh_gamma(sv);
   sv->gamma_current = 1;
+  if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)f->v, dt);
   continuity(sv, dt);
   if (sqrt(dmax) > 0.5 * skin(sv)) {
     snprintf(msg, msglen,

@@ -15,6 +15,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph.h"
+#include "sabre/sph_scalar.h"
 #include "sabre/sph_solver.h"
 
 struct command {
@@ -22,8 +23,10 @@ struct command {
   int (*run)(int argc, char **argv); /* argv[0] is the command name */
 };
 
-static const struct command commands[] = {
-    {"run", sph_cmd_run}, {"gamma", sph_cmd_gamma}, {"mesh", sph_cmd_mesh}};
+static const struct command commands[] = {{"run", sph_cmd_run},
+                                          {"gamma", sph_cmd_gamma},
+                                          {"mesh", sph_cmd_mesh},
+                                          {"scalar", sph_cmd_scalar}};
 
 int main(int argc, char **argv) {
   cmn_set_program_name("sabre-sph");

@@ -44,6 +44,7 @@ static void test_defaults(void **state) {
   assert_int_equal(cfg.diffusion, SPH_DIFFUSION_FERRARI);
   assert_int_equal(cfg.gravity_correction, 2);
   assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
+  assert_int_equal(cfg.gamma_dynamic, 0);
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);

@@ -73,6 +73,7 @@ struct sph_scalar {
   double *lap;              /**< Lap^γ u of the fluid at the current u [u/m²] */
   double *dudn[SPH_NKINDS]; /**< ∂u/∂n at vertices and segments (index VERTEX, SEGMENT) [u/m] */
   double *flux;             /**< per fluid–segment pair: 2 ∂u/∂n|_s, the wall term of M(18) */
+  size_t flux_cap;          /**< allocated length of flux (grown if the lists are rebuilt) */
   double *one[SPH_NKINDS];  /**< β = 1 for sph_op_lap() */
   double time;              /**< [s] */
   long step;

@@ -119,8 +119,8 @@ void sph_scalar_init(struct sph_scalar *sc, struct sph_system *s, double c, doub
   sc->ut = cmn_calloc(f->n + 1, sizeof(double));
   sc->lap = cmn_calloc(f->n + 1, sizeof(double));
   const struct sph_nlist *fs = &sc->nb.list[SPH_KIND_SEGMENT];
-  const size_t npairs = fs->n ? fs->offset[fs->n] : 0;
-  sc->flux = cmn_calloc(npairs + 1, sizeof(double));
+  sc->flux_cap = (fs->n ? fs->offset[fs->n] : 0) + 1;
+  sc->flux = cmn_calloc(sc->flux_cap, sizeof(double));
 }
 
 void sph_scalar_free(struct sph_scalar *sc) {
@@ -271,6 +271,11 @@ int sph_scalar_boundary_values(struct sph_scalar *sc, long *bad_vertex) {
   /* Wall term of M(18) with f = 1: −2/γ_a Σ_s ∂u/∂n|_s |∇γ_as|; sph_op_lap() takes the flux
    * β_s ∂u/∂n|_s + β_a ∂u/∂n|_a of J(8), which is 2 ∂u/∂n|_s for β = 1. */
   const struct sph_nlist *fs = &sc->nb.list[SPH_KIND_SEGMENT];
+  const size_t npairs = fs->n ? fs->offset[fs->n] : 0;
+  if (npairs >= sc->flux_cap) {
+    sc->flux_cap = npairs + 1;
+    sc->flux = cmn_realloc(sc->flux, sc->flux_cap * sizeof(double));
+  }
   for (size_t a = 0; a < fs->n; a++)
     for (size_t q = fs->offset[a]; q < fs->offset[a + 1]; q++)
       sc->flux[q] = 2.0 * sc->dudn[SPH_KIND_SEGMENT][fs->index[q]];

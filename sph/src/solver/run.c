@@ -270,6 +270,12 @@ int sph_cmd_run(int argc, char **argv) {
   sph_system_free(&s);
   sph_geometry_free(&g);
 
+  if (sv->sys.part[SPH_KIND_VERTEX].n > 0 && sv->vertex_phi < 0.25)
+    cmn_warning(
+        "%s: the fitted wall layer is %.2f dr thick: the first fluid row is about dr/2 "
+        "from the walls, where walls attract the fluid (docs/sph-solver.md section 7); "
+        "move the fluid regions dr/2 away from the walls so that it is dr",
+        case_path, sv->vertex_phi);
   struct sph_run_counters rc = {0.0, 0, NULL};
   if (restart) {
     if (sph_checkpoint_read(sv, &rc, restart, err, sizeof err) != 0) cmn_input_error("%s", err);

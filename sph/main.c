@@ -7,6 +7,9 @@
  *       per point on stdout). A public diagnostic: keep its options and output stable.
  *   sabre-sph mesh CASE.yaml --output DIR [--set key=value ...]
  *       mesh the geometry of a case, fill the fluid, compute γ, write VTU files for ParaView.
+ *   sabre-sph scalar CASE.yaml [--output DIR] [--set key=value ...]
+ *       scalar wave equation on fixed particles with Robin/Neumann/Dirichlet walls
+ *       (sph_cmd_scalar, sph/src/scalar/scalar.c; docs/sph-scalar.md).
  *
  * The commands live in the library (sph_cmd_*) so that tests can run them. Exit codes: 0 success,
  * 2 bad input (CMN_EXIT_INPUT), 1 failure. */
@@ -41,6 +44,6 @@ int main(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 1, argv + 1);
-  cmn_input_error("unknown command '%s' (commands: run, gamma, mesh; see sabre-sph --help)",
+  cmn_input_error("unknown command '%s' (commands: run, gamma, mesh, scalar; see sabre-sph --help)",
                   argv[1]);
 }

@@ -28,8 +28,11 @@ void sph_cmd_usage(FILE *out) {
       "  mesh CASE.yaml --output DIR [--set key=value ...]\n"
       "      Mesh the walls and fill the fluid of the case's geometry section, compute gamma,\n"
       "      and write DIR/mesh.pvd (fluid and boundary VTU files) and DIR/used_case.yaml.\n"
+      "  scalar CASE.yaml [--output DIR] [--set key=value ...]\n"
+      "      Solve u_tt = c^2 Lap u on fixed particles with Robin/Neumann/Dirichlet walls\n"
+      "      (docs/sph-scalar.md).\n"
       "\n"
-      "See docs/sph-geometry.md.\n");
+      "See docs/sph-geometry.md, docs/sph-case-file.md and docs/sph-scalar.md.\n");
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -1,0 +1,207 @@
+#!/usr/bin/python3
+"""Dam break over a wedge (M §8): the pressure force on the left wedge wall over time with and
+without volume diffusion (the paper's Fig. 10), and the particles at the times of Fig. 11.
+
+usage: plot.py OUTPUT_DIR [--check]
+  OUTPUT_DIR holds the runs `ferrari/` (numerics.diffusion: ferrari, M 84) and `none/`, as written
+  by ./check (a single run directory with forces.csv is plotted alone). Writes
+  OUTPUT_DIR/dam_break_wedge_force.png and OUTPUT_DIR/dam_break_wedge_snapshots.png and prints the
+  figures quoted in README.md. --check: exit status 1 unless every criterion of README.md holds.
+
+The force is the one the paper plots, the integral of the pressure along the wall: forces.csv gives
+the vector F of the fluid on the wall (wall group `wedge_left`); its component along the wall's
+outward normal, F = F . (sin 60°, -cos 60°), is positive when the water pushes on the wedge.
+"""
+import csv
+import math
+import os
+import re
+import struct
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+# as in case.yaml
+RHO0, C0, XI, G, H_COL = 1000.0, 40.0, 7.0, 9.81, 1.0
+WALL_L = 0.25  # side of the equilateral wedge [m]
+PUSH = (math.sin(math.radians(60.0)), -math.cos(math.radians(60.0)))  # out of the fluid
+RUNS = (("ferrari", "with volume diffusion M(84)"), ("none", "without volume diffusion"))
+SNAP_TIMES = (0.25, 0.5, 0.75, 1.1, 2.0, 2.5)  # Fig. 11 has 0.5, 0.75, 1.1 and 2.5 s
+TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def read_vtu(path):
+    """Point positions and point data of a VTU file in SABRE's raw appended binary format."""
+    raw = open(path, "rb").read()
+    start = raw.index(b"<AppendedData")
+    blob = raw[raw.index(b"_", start) + 1:]
+    out = {}
+    for arr in re.finditer(r"<DataArray ([^>]*)/>", raw[:start].decode()):
+        attrs = dict(re.findall(r'(\w+)="([^"]*)"', arr.group(1)))
+        code, size = TYPES[attrs["type"]]
+        off = int(attrs["offset"])
+        nbytes = struct.unpack_from("<Q", blob, off)[0]
+        data = np.frombuffer(blob, dtype="<" + code, count=nbytes // size, offset=off + 8)
+        ncomp = int(attrs.get("NumberOfComponents", "1"))
+        out.setdefault(attrs.get("Name", "points"), data.reshape(-1, ncomp) if ncomp > 1 else data)
+    return out
+
+
+def outputs(run_dir):
+    """(time, fluid file, boundary file) of every output listed in particles.pvd."""
+    pvd = open(os.path.join(run_dir, "particles.pvd")).read()
+    files = {}
+    for m in re.finditer(r'timestep="([^"]+)"[^>]*part="(\d)"[^>]*file="([^"]+)"', pvd):
+        files.setdefault(float(m.group(1)), {})[m.group(2)] = m.group(3)
+    return sorted((t, f.get("0"), f.get("1")) for t, f in files.items())
+
+
+def force(run_dir):
+    f = read_csv(os.path.join(run_dir, "forces.csv"))
+    return f["time"], f["wedge_left_fx"] * PUSH[0] + f["wedge_left_fy"] * PUSH[1]
+
+
+def smooth(t, f, width):
+    """Centred moving average over `width` seconds (rows are not evenly spaced)."""
+    out = np.empty_like(f)
+    for i, ti in enumerate(t):
+        sel = np.abs(t - ti) <= 0.5 * width
+        out[i] = f[sel].mean()
+    return out
+
+
+def figures(t, f):
+    """Impact time (F first above 100 N), peak of the 0.02 s mean and its time, raw maximum,
+    mean over t >= 1.5 s, rms of F minus its 0.05 s mean over t >= 0.4 s (noise)."""
+    hit = np.nonzero(f > 100.0)[0]
+    t_hit = t[hit[0]] if len(hit) else math.nan
+    fs = smooth(t, f, 0.02)  # the one- or two-step acoustic spikes of the impact left out
+    k = int(np.argmax(fs))
+    late = t >= 1.5
+    calm = t >= 0.4
+    noise = f - smooth(t, f, 0.05)
+    return dict(t_hit=t_hit, peak=fs[k], t_peak=t[k], spike=f.max(), end=t[-1],
+                late=f[late].mean() if late.any() else math.nan,
+                noise=math.sqrt(np.mean(noise[calm] ** 2)) if calm.any() else math.nan)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    checking = "--check" in sys.argv
+    runs = [(n, l) for n, l in RUNS if os.path.exists(os.path.join(out, n, "forces.csv"))]
+    if not runs and os.path.exists(os.path.join(out, "forces.csv")):
+        runs = [(".", "this run")]
+    if not runs:
+        sys.exit("%s: no forces.csv (run ./check or sabre-sph run case.yaml --output %s)" % (out, out))
+
+    f_scale = RHO0 * G * H_COL * WALL_L  # hydrostatic pressure of the column over the wall
+    # Ritter's ideal front leaves the column (x = 0.5 m) at 2 sqrt(g H): nothing arrives earlier
+    t_ritter = (0.85 - 0.5) / (2.0 * math.sqrt(G * H_COL))
+    # settled state: the water (0.5 m^2) at rest over the floor and the wedge
+    wedge_h = WALL_L * math.sin(math.radians(60.0))
+    depth = (0.5 + 0.5 * WALL_L * wedge_h) / 2.2
+    f_rest = RHO0 * G * WALL_L * (depth - 0.5 * wedge_h)
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    res = {}
+    for name, label in reversed(runs):  # the run with diffusion drawn last, on top
+        t, f = force(os.path.join(out, name))
+        ax.plot(t, f, lw=0.8, label=label, color="tab:orange" if name == "none" else "tab:blue")
+        res[name] = figures(t, f)
+        d = read_csv(os.path.join(out, name, "diagnostics.csv"))
+        res[name]["mass"] = d["mass"]
+        res[name]["n"] = d["particles"]
+    ax.axhline(f_rest, color="k", ls="--", lw=0.8, label="water at rest (hydrostatic), %.0f N" % f_rest)
+    ax.set_xlim(0, 2)
+    ax.set_ylim(-500, max(2000, 1.1 * max(r["peak"] for r in res.values())))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("force on the left wedge wall [N/m]")
+    ax.set_title("Dam break over a wedge (M Fig. 10)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "dam_break_wedge_force.png"), dpi=130)
+
+    name0 = runs[0][0]
+    series = outputs(os.path.join(out, name0))
+    times = [ts for ts in SNAP_TIMES if ts <= series[-1][0] + 1e-9]
+    fig, axes = plt.subplots(len(times), 1, figsize=(8, 2.2 * len(times)), sharex=True,
+                             squeeze=False)
+    axes = axes[:, 0]
+    for ax, ts in zip(axes, times):
+        t, ffile, bfile = min(series, key=lambda s: abs(s[0] - ts))
+        p = read_vtu(os.path.join(out, name0, ffile))
+        b = read_vtu(os.path.join(out, name0, bfile))
+        x = p["points"]
+        pres = RHO0 * C0 * C0 / XI * ((p["density"] / RHO0) ** XI - 1.0)
+        sc = ax.scatter(x[:, 0], x[:, 1], c=pres / 1e3, s=1.5, cmap="viridis", vmin=0, vmax=12)
+        conn = b["connectivity"].reshape(-1, 2)
+        xv = b["points"]
+        for i, j in conn:
+            ax.plot(xv[[i, j], 0], xv[[i, j], 1], "k-", lw=0.6)
+        ax.set_aspect("equal")
+        ax.set_ylim(-0.05, 1.1)
+        ax.set_title("t = %.2f s (%s)" % (t, dict(runs)[name0]), fontsize=9)
+        fig.colorbar(sc, ax=ax, label="p [kPa]", shrink=0.8)
+    axes[-1].set_xlabel("x [m]")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "dam_break_wedge_snapshots.png"), dpi=110)
+    print("wrote %s/dam_break_wedge_force.png and dam_break_wedge_snapshots.png" % out)
+
+    for name, label in runs:
+        r = res[name]
+        dm = np.max(np.abs(r["mass"] - r["mass"][0])) / r["mass"][0]
+        print("%s: to t = %.3f s; impact (F > 100 N) at %.3f s; peak of the 0.02 s mean %.0f N at "
+              "%.3f s (%.2f rho g H L), raw maximum %.0f N; mean F over t >= 1.5 s %.0f N (%.2f x "
+              "at rest, %.0f N); rms of F minus its 0.05 s mean over t >= 0.4 s %.0f N; mass drift "
+              "%.1e; particles %d..%d"
+              % (label, r["end"], r["t_hit"], r["peak"], r["t_peak"], r["peak"] / f_scale, r["spike"], r["late"],
+                 r["late"] / f_rest, f_rest, r["noise"], dm, r["n"].min(), r["n"].max()))
+    if not checking:
+        return
+    failures = []
+
+    def require(ok, what):
+        print("  %-4s %s" % ("ok" if ok else "FAIL", what))
+        if not ok:
+            failures.append(what)
+
+    print("criteria (README.md):")
+    if len(runs) < 2:
+        require(False, "both runs present")
+    for name, label in runs:
+        r = res[name]
+        require(np.max(np.abs(r["mass"] - r["mass"][0])) <= 1e-12 * r["mass"][0],
+                "%s: total mass constant to 1e-12" % label)
+        require(r["n"].min() == r["n"].max() == r["n"][0], "%s: no particle lost" % label)
+        require(t_ritter <= r["t_hit"] <= 0.3,
+                "%s: the front reaches the wedge after Ritter's ideal front (%.3f s), before 0.3 s"
+                % (label, t_ritter))
+        require(0.8 <= r["late"] / f_rest <= 1.5,
+                "%s: mean force over 1.5-2 s is 0.8-1.5 x the hydrostatic force at rest (settling)"
+                % label)
+    if "ferrari" in res:
+        require(0.4 <= res["ferrari"]["peak"] / f_scale <= 1.5,
+                "with diffusion: peak of the 0.02 s mean force 0.4-1.5 rho g H L (dam-break "
+                "pressures are of order rho g H)")
+    if "none" in res and "ferrari" in res:
+        require(res["ferrari"]["noise"] < res["none"]["noise"],
+                "diffusion reduces the force noise after the impact (M §8)")
+    if failures:
+        sys.exit("check failed: %d criterion(s)" % len(failures))
+    print("all criteria hold")
+
+
+if __name__ == "__main__":
+    main()

@@ -121,7 +121,7 @@ static void run(const struct bench_case *bc, int threads) {
     }
     pairs += count_pairs(sv); /* pairs at the end of the step (the list still holds them) */
   }
-  printf("| %-11s | %7d | %15zu | %5ld | %6.2f | %15.3e | %25.3e |\n", bc->name, threads, nfluid,
+  printf("| %-12s | %7d | %15zu | %5ld | %6.2f | %16.3e | %26.3e |\n", bc->name, threads, nfluid,
          steps, wall, (double)nfluid * (double)steps / wall, pairs / wall);
   fflush(stdout);
   sph_solver_free(sv);
@@ -136,7 +136,7 @@ int main(void) {
   const int threads[] = {1, 2};
   printf("bench-sph: solver steps of a small dam break (t from 0; fixed step counts)\n");
   printf(
-      "| case        | threads | fluid particles | steps | wall s | particle-steps/s | "
+      "| case         | threads | fluid particles | steps | wall s | particle-steps/s | "
       "fluid-fluid interactions/s |\n");
   printf("|---|---|---|---|---|---|---|\n");
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)

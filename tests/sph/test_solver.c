@@ -397,6 +397,55 @@ static void test_poiseuille(void **state) {
   }
 }
 
+/* Vertices of a side wall above the free surface: the hydrostatic correction must not give them a
+ * negative pressure (it would suck the fluid up the wall); below the surface it gives ρ g depth. */
+static void test_vertex_above_surface(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_system s;
+  const double dr = 0.01, H = 0.105; /* rows at y = dr ... 0.1, surface dr/2 above the top row */
+  sph_system_init(&s, 2);
+  s.dr = dr;
+  s.h = 2 * dr;
+  s.domain.dim = 2;
+  s.domain.hi[0] = 0.2;
+  s.domain.hi[1] = 0.2;
+  struct sph_mesh m;
+  sph_mesh_init(&m, 2);
+  const double lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.2, 0};
+  sph_mesh_box(&m, lo, hi, dr, 0, 0, sph_mesh_add_source(&m, "box"));
+  sph_mesh_refine(&m, dr);
+  sph_system_add_walls(&s, &m);
+  sph_mesh_free(&m);
+  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, 19 * 10);
+  for (int j = 0; j < 10; j++)
+    for (int i = 0; i < 19; i++) {
+      s.part[SPH_KIND_FLUID].x[0][f0 + (size_t)(j * 19 + i)] = (i + 1) * dr;
+      s.part[SPH_KIND_FLUID].x[1][f0 + (size_t)(j * 19 + i)] = (j + 1) * dr;
+    }
+  struct sph_config cfg;
+  fixture_config(&cfg);
+  cfg.gravity[1] = -9.81;
+  cfg.hydrostatic = 1;
+  cfg.free_surface = H;
+  struct sph_solver sv;
+  sph_solver_init(&sv, &cfg, &s, NULL, NULL);
+  sph_system_free(&s);
+  const struct sph_parts *v = &sv.sys.part[SPH_KIND_VERTEX];
+  int above = 0;
+  for (size_t i = 0; i < v->n; i++) {
+    const double x = v->x[0][i], y = v->x[1][i], p = sv.p[SPH_KIND_VERTEX][i];
+    if (y > H && y < H + 4 * dr && (x == 0.0 || x == 0.2)) {
+      assert_true(p >= 0.0);
+      above++;
+    } else if (y < H - 2 * dr && y > 0.0 && (x == 0.0 || x == 0.2)) {
+      assert_rel(p, 1000 * 9.81 * (H - y), 0.03);
+    }
+  }
+  assert_true(above >= 6);
+  sph_solver_free(&sv);
+}
+
 /* Hydrostatic water at rest: the Shepard vertex pressure with the hydrostatic correction reads the
  * floor pressure, and the floor force (segment pressure integral) carries the column's weight. */
 static void test_hydrostatic_floor(void **state) {
@@ -485,11 +534,12 @@ static void test_escape_and_nan(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_momentum_periodic), cmocka_unit_test(test_diffusion_volume),
-      cmocka_unit_test(test_skew_adjoint),      cmocka_unit_test(test_vertex_masses),
-      cmocka_unit_test(test_density_band_stop), cmocka_unit_test(test_escape_and_nan),
-      cmocka_unit_test(test_hydrostatic_floor), cmocka_unit_test(test_time_order),
-      cmocka_unit_test(test_gamma_dynamic),     cmocka_unit_test(test_poiseuille),
+      cmocka_unit_test(test_momentum_periodic),    cmocka_unit_test(test_diffusion_volume),
+      cmocka_unit_test(test_skew_adjoint),         cmocka_unit_test(test_vertex_masses),
+      cmocka_unit_test(test_density_band_stop),    cmocka_unit_test(test_escape_and_nan),
+      cmocka_unit_test(test_hydrostatic_floor),    cmocka_unit_test(test_time_order),
+      cmocka_unit_test(test_gamma_dynamic),        cmocka_unit_test(test_poiseuille),
+      cmocka_unit_test(test_vertex_above_surface),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

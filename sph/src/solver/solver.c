@@ -110,7 +110,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t iv = 0; iv < v->n; iv++) {
-    double alpha = 0.0, sum = 0.0;
+    double alpha = 0.0, sum = 0.0, sum_raw = 0.0;
     const double nv[3] = {v->normal[0][iv], v->normal[1][iv], v->normal[2][iv]};
     for (size_t q = nl->offset[iv]; q < nl->offset[iv + 1]; q++) {
       size_t b = nl->index[q];
@@ -128,8 +128,13 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
       }
       alpha += vw;
       sum += vw * pb;
+      sum_raw += vw * sv->p[SPH_KIND_FLUID][b];
     }
     double pv = alpha > 0.0 ? sum / alpha : 0.0;
+    /* Above the free surface the hydrostatic extrapolation gives a negative pressure that the
+     * fluid does not have (air): it would suck the fluid up the walls. The correction may not take
+     * the value below min(plain Shepard value, 0). */
+    if (alpha > 0.0) pv = fmax(pv, fmin(sum_raw / alpha, 0.0));
     double pmin = rmn_eos_min_pressure(eos);
     if (!(pv > 0.999 * pmin)) pv = 0.999 * pmin; /* keep ρ(p) defined */
     sv->p[SPH_KIND_VERTEX][iv] = pv;

@@ -377,6 +377,12 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   struct row_buffer {
     size_t *data, n, cap;
   } *buf = cmn_calloc((size_t)nthreads, sizeof *buf);
+  /* Every buffer is allocated, even for a thread that will find no pair: the copy below then
+   * always reads from a valid pointer (memcpy from NULL is undefined even for 0 bytes). */
+  for (int t = 0; t < nthreads; t++) {
+    buf[t].cap = 1024;
+    buf[t].data = cmn_malloc(buf[t].cap * sizeof *buf[t].data);
+  }
   int *cell_thread = cmn_malloc((c->ncells + 1) * sizeof *cell_thread);
   size_t *cell_at = cmn_malloc((c->ncells + 1) * sizeof *cell_at);
 #ifdef _OPENMP
@@ -450,8 +456,7 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t ci = 0; ci < c->ncells; ci++) {
-    /* No buffer: its thread found no neighbour at all. */
-    if (startq[ci] == startq[ci + 1] || !buf[cell_thread[ci]].data) continue;
+    if (startq[ci] == startq[ci + 1]) continue;
     const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
     for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
       size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];

@@ -20,6 +20,7 @@ static const struct sph_field fields[] = {
     FIELD("velocity", SPH_FIELD_DOUBLE, 3, v, F | V | S),
     FIELD("mass", SPH_FIELD_DOUBLE, 1, mass, F | V),
     FIELD("density", SPH_FIELD_DOUBLE, 1, rho, F | V | S),
+    FIELD("pressure", SPH_FIELD_DOUBLE, 1, p, F | V | S),
     FIELD("gamma", SPH_FIELD_DOUBLE, 1, gamma, F | V),
     FIELD("grad_gamma", SPH_FIELD_DOUBLE, 3, grad_gamma, F | V),
     FIELD("normal", SPH_FIELD_DOUBLE, 3, normal, V | S),
@@ -38,8 +39,8 @@ const struct sph_field *sph_parts_fields(int *n) {
   return fields;
 }
 
-static size_t field_size(const struct sph_field *f) {
-  switch (f->type) {
+size_t sph_field_type_size(enum sph_field_type type) {
+  switch (type) {
     case SPH_FIELD_DOUBLE:
       return sizeof(double);
     case SPH_FIELD_INT64:
@@ -83,7 +84,7 @@ void sph_parts_reserve(struct sph_parts *p, size_t capacity) {
   while (cap < capacity) cap += cap / 2;
   for (int i = 0; i < NFIELDS; i++) {
     if (!carries(p, &fields[i])) continue;
-    size_t sz = field_size(&fields[i]);
+    size_t sz = sph_field_type_size(fields[i].type);
     for (int c = 0; c < fields[i].ncomp; c++) {
       void **slot = field_slot(p, &fields[i], c);
       *slot = cmn_realloc(*slot, cap * sz);
@@ -98,7 +99,7 @@ size_t sph_parts_append(struct sph_parts *p, size_t count) {
   sph_parts_reserve(p, p->n + count);
   for (int i = 0; i < NFIELDS; i++) {
     if (!carries(p, &fields[i])) continue;
-    size_t sz = field_size(&fields[i]);
+    size_t sz = sph_field_type_size(fields[i].type);
     for (int c = 0; c < fields[i].ncomp; c++)
       memset((char *)*field_slot(p, &fields[i], c) + first * sz, 0, count * sz);
   }
@@ -113,7 +114,7 @@ size_t sph_parts_remove(struct sph_parts *p, const uint8_t *remove) {
     if (kept != i) {
       for (int f = 0; f < NFIELDS; f++) {
         if (!carries(p, &fields[f])) continue;
-        size_t sz = field_size(&fields[f]);
+        size_t sz = sph_field_type_size(fields[f].type);
         for (int c = 0; c < fields[f].ncomp; c++) {
           char *a = *field_slot(p, &fields[f], c);
           memcpy(a + kept * sz, a + i * sz, sz);
@@ -133,7 +134,7 @@ void sph_parts_permute(struct sph_parts *p, const size_t *order) {
   char *tmp = cmn_malloc(p->n * maxsz);
   for (int f = 0; f < NFIELDS; f++) {
     if (!carries(p, &fields[f])) continue;
-    size_t sz = field_size(&fields[f]);
+    size_t sz = sph_field_type_size(fields[f].type);
     for (int c = 0; c < fields[f].ncomp; c++) {
       char *a = *field_slot(p, &fields[f], c);
       for (size_t i = 0; i < p->n; i++) memcpy(tmp + i * sz, a + order[i] * sz, sz);

@@ -332,6 +332,78 @@ static void test_fill_3d_stl_tank(void **state) {
   sph_geometry_free(&g);
 }
 
+/* geometry.first_row: the lattice lo + (i + first_row) dr. With 1 the first row lies dr from
+ * walls on a region's faces at both ends (the point on the hi face is dropped, being on the
+ * wall), and a periodic direction keeps n evenly spaced columns. 2D tank, 2D channel, 3D tank. */
+static void check_first_row(const struct sph_system *s, int dim, const double *lo_wall,
+                            const double *hi_wall, const int *walled, double dr) {
+  const struct sph_parts *pf = &s->part[SPH_KIND_FLUID];
+  for (int a = 0; a < dim; a++) {
+    double mn = INFINITY, mx = -INFINITY;
+    for (size_t i = 0; i < pf->n; i++) {
+      mn = fmin(mn, pf->x[a][i]);
+      mx = fmax(mx, pf->x[a][i]);
+    }
+    assert_rel(mn - lo_wall[a], dr, 1e-9);
+    if (walled[a]) assert_rel(hi_wall[a] - mx, dr, 1e-9);
+  }
+}
+
+static void test_fill_first_row(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  /* 2D tank: x in [0, 1.2] (walls at both ends), y from the floor to the region's top 0.5. */
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  first_row: 1\n  walls:\n"
+      "    - {type: box, lo: [0, 0], hi: [1.2, 0.7]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 0.5]}\n",
+      &g, &s);
+  assert_rel(g.first_row, 1.0, 1e-15);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 11 * 5);
+  const double lo2[3] = {0, 0, 0}, hi2[3] = {1.2, 0.7, 0};
+  check_first_row(&s, 2, lo2, hi2, (const int[]){1, 0, 0}, 0.1);
+  double ymax = 0;
+  for (size_t i = 0; i < s.part[SPH_KIND_FLUID].n; i++)
+    ymax = fmax(ymax, s.part[SPH_KIND_FLUID].x[1][i]);
+  assert_rel(ymax, 0.5, 1e-12); /* the top row on the region's (wall-free) hi face */
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  /* The default is the midpoint lattice, dr/2 from the walls. */
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  walls:\n"
+      "    - {type: box, lo: [0, 0], hi: [1.2, 0.7]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.2, 0.5]}\n",
+      &g, &s);
+  assert_rel(g.first_row, 0.5, 1e-15);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 12 * 5);
+  check_first_row(&s, 2, lo2, hi2, (const int[]){0, 0, 0}, 0.05);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  /* Channel periodic in x over 1.3 = 13 dr: 13 evenly spaced columns, the last on the period. */
+  build(
+      "geometry:\n  dimension: 2\n  dr: 0.1\n  first_row: 1\n  periodic: [x]\n  walls:\n"
+      "    - {type: channel, lo: [0, 0], hi: [1.3, 0.6]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0], hi: [1.3, 0.6]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 13 * 5);
+  const double hic[3] = {1.3, 0.6, 0};
+  check_first_row(&s, 2, lo2, hic, (const int[]){0, 1, 0}, 0.1);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  /* 3D tank 0.5 × 0.4 × 0.6 at dr = 0.05, fluid up to z = 0.3. */
+  build(
+      "geometry:\n  dimension: 3\n  dr: 0.05\n  h_over_dr: 1.3\n  first_row: 1\n  walls:\n"
+      "    - {type: box, lo: [0, 0, 0], hi: [0.5, 0.4, 0.6]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [0.5, 0.4, 0.3]}\n",
+      &g, &s);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 9 * 7 * 6);
+  const double hi3[3] = {0.5, 0.4, 0.6};
+  check_first_row(&s, 3, lo2, hi3, (const int[]){1, 1, 0}, 0.05);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
@@ -339,6 +411,6 @@ int main(void) {
       cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
       cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_fill_midway),
       cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl),
-      cmocka_unit_test(test_fill_3d_stl_tank)};
+      cmocka_unit_test(test_fill_3d_stl_tank), cmocka_unit_test(test_fill_first_row)};
   return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

@@ -197,6 +197,47 @@ static void test_neighbours_empty(void **state) {
   sph_system_free(&s);
 }
 
+/* Threads that find no pair at all, next to threads that do: one vertex in a corner of a lattice
+ * of fluid particles over 12 × 12 cells, and no vertex at all; 1 to 4 threads. The row buffers of
+ * the idle threads must not be read as NULL (UBSan in the sanitizer build). */
+static void test_neighbours_idle_threads(void **state) {
+  (void)state;
+  struct sph_system s;
+  sph_system_init(&s, 2);
+  s.domain.hi[0] = s.domain.hi[1] = 1.2;
+  const int side = 24;
+  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, (size_t)(side * side));
+  for (int i = 0; i < side * side; i++) {
+    s.part[SPH_KIND_FLUID].x[0][f0 + (size_t)i] = 0.05 * (i % side) + 0.0213;
+    s.part[SPH_KIND_FLUID].x[1][f0 + (size_t)i] = 0.05 * (i / side) + 0.0187;
+  }
+  for (int nv = 0; nv <= 1; nv++) {
+    if (nv) {
+      size_t v0 = sph_system_append(&s, SPH_KIND_VERTEX, 1);
+      s.part[SPH_KIND_VERTEX].x[0][v0] = 0.031;
+      s.part[SPH_KIND_VERTEX].x[1][v0] = 0.047;
+    }
+    struct sph_nlist naive = {0};
+    sph_nlist_build_naive(&naive, &s, SPH_KIND_FLUID, SPH_KIND_VERTEX, 0.1);
+    const size_t pairs = naive.offset[naive.n];
+    assert_true(nv ? pairs > 0 && pairs < 20 : pairs == 0);
+    for (int threads = 1; threads <= 4; threads++) {
+      set_threads(threads);
+      struct sph_cells cells = {0};
+      struct sph_nlist nl = {0};
+      sph_cells_build(&cells, &s, 0.1);
+      assert_true(cells.ncells >= 100);
+      sph_nlist_build(&nl, &cells, &s, SPH_KIND_FLUID, SPH_KIND_VERTEX, 0.1);
+      assert_int_equal(compare_lists(&nl, &naive), pairs);
+      sph_nlist_free(&nl);
+      sph_cells_free(&cells);
+    }
+    sph_nlist_free(&naive);
+  }
+  set_threads(1);
+  sph_system_free(&s);
+}
+
 /* Point-to-element distance against hand-computed cases (face, edge and vertex regions). */
 static void test_element_distance(void **state) {
   (void)state;
@@ -219,6 +260,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_element_distance),       cmocka_unit_test(test_neighbours_1d),
       cmocka_unit_test(test_neighbours_2d),          cmocka_unit_test(test_neighbours_3d),
-      cmocka_unit_test(test_neighbours_wide_radius), cmocka_unit_test(test_neighbours_empty)};
+      cmocka_unit_test(test_neighbours_wide_radius), cmocka_unit_test(test_neighbours_empty),
+      cmocka_unit_test(test_neighbours_idle_threads)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -434,7 +434,7 @@ static void test_vertex_above_surface(void **state) {
   const struct sph_parts *v = &sv.sys.part[SPH_KIND_VERTEX];
   int above = 0;
   for (size_t i = 0; i < v->n; i++) {
-    const double x = v->x[0][i], y = v->x[1][i], p = sv.p[SPH_KIND_VERTEX][i];
+    const double x = v->x[0][i], y = v->x[1][i], p = sv.sys.part[SPH_KIND_VERTEX].p[i];
     if (y > H && y < H + 4 * dr && (x == 0.0 || x == 0.2)) {
       assert_true(p >= 0.0);
       above++;
@@ -478,7 +478,7 @@ static void test_hydrostatic_floor(void **state) {
                          0.5 * dr * 9.81 * sv.sys.part[SPH_KIND_FLUID].rho[0];
   const struct sph_parts *v = &sv.sys.part[SPH_KIND_VERTEX];
   for (size_t i = 0; i < v->n; i++)
-    if (v->x[1][i] < 0.5 * dr) assert_rel(sv.p[SPH_KIND_VERTEX][i], p_floor, 2e-3);
+    if (v->x[1][i] < 0.5 * dr) assert_rel(sv.sys.part[SPH_KIND_VERTEX].p[i], p_floor, 2e-3);
   sph_solver_evaluate(&sv);
   double f[SPH_MAX_FORCE_GROUPS][3];
   sph_solver_wall_forces(&sv, f);

@@ -42,10 +42,6 @@ def read_vtu(path):
     return arrays
 
 
-def pressure(rho):
-    return B * ((rho / RHO0) ** XI - 1.0)
-
-
 def hydrostatic(depth):
     """Exact hydrostatic pressure of the Tait EOS at a depth (as the initial state)."""
     if depth <= 0:
@@ -86,8 +82,8 @@ def main():
     v = read_vtu(last)
     err2, n = 0.0, 0
     ys, ps, pe = [], [], []
-    for (x, y, _), (rho,) in zip(v["points"], v["density"]):
-        p, ph = pressure(rho), hydrostatic(H - y)
+    for (x, y, _), (p,) in zip(v["points"], v["pressure"]):
+        ph = hydrostatic(H - y)
         err2 += (p - ph) ** 2
         n += 1
         ys.append(y), ps.append(p), pe.append(ph)

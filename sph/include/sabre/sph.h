@@ -52,6 +52,7 @@ struct sph_parts {
   double *v[3];          /**< velocity [m/s] */
   double *mass;          /**< mass [kg] (fluid, vertex; set by the solver, 0 after meshing) */
   double *rho;           /**< density [kg/m^3] (set by the solver, 0 after meshing) */
+  double *p;             /**< pressure [Pa] (set by the solver, 0 after meshing) */
   double *gamma;         /**< γ, J(2) (fluid, vertex) [-] */
   double *grad_gamma[3]; /**< ∇γ, J(4) (fluid, vertex) [1/m] */
   double *normal[3];     /**< unit normal into the fluid (segment; vertex: mean of its segments) */
@@ -86,6 +87,8 @@ struct sph_field {
   size_t offset;  /**< offsetof(struct sph_parts, <field>) */
   unsigned kinds; /**< bit (1 << kind) set when the kind carries the field */
 };
+/** Bytes per particle of one component of a field of this type (0 for an unknown type). */
+size_t sph_field_type_size(enum sph_field_type type);
 /** The field table (count in *n). */
 const struct sph_field *sph_parts_fields(int *n);
 /** Pointer to component c of field f of p (NULL if the kind does not carry it). */
@@ -298,6 +301,7 @@ struct sph_geometry {
   double dr;                /**< particle spacing Δr [m] */
   double h_over_dr;         /**< h / Δr [-] */
   double min_wall_distance; /**< fluid particles closer to a wall are not created [m] */
+  double first_row;         /**< lattice offset: points at lo + (i + first_row) Δr [Δr] */
   struct sph_domain domain;
   struct sph_mesh walls; /**< refined, merged, checked */
   /** Fluid regions, in case order. */
@@ -322,7 +326,9 @@ void sph_geometry_free(struct sph_geometry *g);
  *  measure-weighted mean of their segments'; flags as described for enum sph_flag. */
 void sph_system_add_walls(struct sph_system *s, const struct sph_mesh *m);
 /**
- * Fill the fluid regions of g on a lattice of spacing dr (points lo + (i + 1/2) dr), keeping the
+ * Fill the fluid regions of g on a lattice of spacing dr (points lo + (i + first_row) dr, i = 0 ..
+ * n − 1 with n = ⌊(hi − lo)/dr⌋ per direction; first_row = 1 puts the first row dr from walls on
+ * the region's faces, the last point then lying on the hi face), keeping the
  * points inside the walls (side of the nearest element, with pseudo-normals at edges and
  * vertices; points far from every wall take the side of their lattice neighbours) and at least
  * min_wall_distance from them. The walls must already be in s. Returns the count added.

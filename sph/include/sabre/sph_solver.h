@@ -5,9 +5,9 @@
  * probes, wall forces, checkpoints and the `run` command. Equations as implemented, with their
  * M()/J() references: docs/sph-solver.md; case-file keys: docs/sph-case-file.md.
  *
- * Particle data live in the infra store (struct sph_system, sabre/sph.h); the solver keeps the
- * fields the store does not carry (pressure, accelerations, the state at the start of a step) in
- * struct sph_solver, indexed like the store. Every per-particle solver array is reallocated by
+ * Particle data live in the infra store (struct sph_system, sabre/sph.h), pressure included (so
+ * the output carries it); the solver keeps the fields the store does not carry (accelerations,
+ * viscosity, the state at the start of a step) in struct sph_solver, indexed like the store. Every per-particle solver array is reallocated by
  * sph_solver_sync() when the store grows, so that open boundaries (particle creation and
  * deletion, mass-varying vertices, J 10–15) slot in without changing the step.
  *
@@ -190,7 +190,6 @@ struct sph_solver {
   long step;
   double dt;
   /* per-particle solver fields, per kind, capacity cap[kind] */
-  double *p[SPH_NKINDS];   /**< pressure [Pa] */
   double *acc[3];          /**< fluid acceleration [m/s²] */
   double *x0[3], *v0[3];   /**< fluid state at the start of the step */
   double *rho_n, *gamma_n; /**< fluid ρ^n, γ^n */

@@ -238,6 +238,10 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
   cmn_case_opt_positive(c, "geometry.h_over_dr", 2.0, &g->h_over_dr);
   cmn_case_opt_double(c, "geometry.min_wall_distance", 0.5 * g->dr, 0, INFINITY,
                       &g->min_wall_distance);
+  cmn_case_opt_double(c, "geometry.first_row", 0.5, 0.0, 1.0, &g->first_row);
+  if (!(g->first_row > 0.0))
+    cmn_case_fail(c, "geometry.first_row", "expected a number in (0, 1] (units of dr), got %g",
+                  g->first_row);
   struct sph_domain *dom = &g->domain;
   dom->dim = g->dim;
   int np = cmn_case_seq_length(c, "geometry.periodic");

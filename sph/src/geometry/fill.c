@@ -65,9 +65,11 @@ static int polygon_contains(size_t n, const double (*p)[2], const double *x) {
   return in;
 }
 
-static int region_contains(const struct sph_region *r, int dim, const double *x) {
+/* tol: lattice points on the region's faces (first_row = 1 puts the last one on hi) belong to
+ * it whatever the rounding. */
+static int region_contains(const struct sph_region *r, int dim, const double *x, double tol) {
   for (int a = 0; a < dim; a++)
-    if (x[a] < r->lo[a] || x[a] > r->hi[a]) return 0;
+    if (x[a] < r->lo[a] - tol || x[a] > r->hi[a] + tol) return 0;
   return r->type == 0 || polygon_contains(r->npts, (const double(*)[2])r->pts, x);
 }
 
@@ -191,7 +193,7 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
     for (size_t i = 0; i < total; i++) {
       size_t rest = i;
       for (int a = 0; a < dim; a++) {
-        pc->x[a][i] = reg->lo[a] + ((double)(rest % (size_t)n[a]) + 0.5) * dr;
+        pc->x[a][i] = reg->lo[a] + ((double)(rest % (size_t)n[a]) + g->first_row) * dr;
         rest /= (size_t)n[a];
       }
     }
@@ -235,8 +237,8 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
     double dmin = g->min_wall_distance - 1e-9 * dr;
     for (size_t i = 0; i < total; i++) {
       double x[3] = {pc->x[0][i], pc->x[1][i], pc->x[2][i]};
-      int keep = side[i] != 0 && !(dist[i] < dmin) && region_contains(reg, dim, x);
-      for (int q = 0; q < r && keep; q++) keep = !region_contains(&g->regions[q], dim, x);
+      int keep = side[i] != 0 && !(dist[i] < dmin) && region_contains(reg, dim, x, 1e-9 * dr);
+      for (int q = 0; q < r && keep; q++) keep = !region_contains(&g->regions[q], dim, x, 0.0);
       drop[i] = !keep;
     }
     sph_parts_remove(pc, drop);

@@ -12,21 +12,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT2";
-
-static size_t type_size(enum sph_field_type t) {
-  switch (t) {
-    case SPH_FIELD_DOUBLE:
-      return sizeof(double);
-    case SPH_FIELD_INT64:
-      return sizeof(int64_t);
-    case SPH_FIELD_UINT8:
-      return sizeof(uint8_t);
-    case SPH_FIELD_SIZE:
-      return sizeof(size_t);
-  }
-  return 0;
-}
+static const char magic[16] = "SABRE-SPH-CKPT3";
 
 #define W(ptr, size, count)                                                      \
   do {                                                                           \
@@ -73,7 +59,7 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
     for (int i = 0; i < nf; i++)
       for (int c = 0; c < fields[i].ncomp; c++) {
         const void *data = sph_parts_field_data(p, &fields[i], c);
-        if (data) W(data, type_size(fields[i].type), (size_t)n);
+        if (data) W(data, sph_field_type_size(fields[i].type), (size_t)n);
       }
   }
   if (fclose(fp) != 0) {
@@ -172,7 +158,7 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
     for (int i = 0; i < nf; i++)
       for (int c = 0; c < fields[i].ncomp; c++) {
         void *data = sph_parts_field_data(p, &fields[i], c);
-        if (data) R(data, type_size(fields[i].type), (size_t)n);
+        if (data) R(data, sph_field_type_size(fields[i].type), (size_t)n);
       }
   }
   fclose(fp);

@@ -99,7 +99,7 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
   for (size_t j = 0; j < sg->n; j++) {
     int g = sv->seg_group[j];
     if (g < 0) continue;
-    const double ps = sv->p[SPH_KIND_SEGMENT][j] * sg->measure[j];
+    const double ps = sv->sys.part[SPH_KIND_SEGMENT].p[j] * sg->measure[j];
     for (int c = 0; c < 3; c++) out[g][c] -= ps * sg->normal[c][j];
   }
   if (!(sv->cfg.nu > 0.0)) return;

@@ -167,8 +167,11 @@ static void close_files(struct run_files *rf) {
   if (bad) cmn_error("an output CSV file could not be written completely");
 }
 
-static void write_vtu(struct run_files *rf, struct sph_run_counters *rc,
-                      const struct sph_solver *sv) {
+/* The store's pressure is that of the last force evaluation (the step's predictor): evaluate the
+ * current state first (the next step reuses it), unless the step failed (NaN positions). */
+static void write_vtu(struct run_files *rf, struct sph_run_counters *rc, struct sph_solver *sv,
+                      int failed) {
+  if (!failed && sv->evaluated_step != sv->step) sph_solver_evaluate(sv);
   if (sph_output_write(&rf->vtu, &sv->sys, sv->time) != 0)
     cmn_error("cannot write the particle output in '%s'", rf->dir);
   rc->output_times = cmn_realloc(rc->output_times, (size_t)(rc->outputs + 1) * sizeof(double));
@@ -274,7 +277,8 @@ int sph_cmd_run(int argc, char **argv) {
     cmn_warning(
         "%s: the fitted wall layer is %.2f dr thick: the first fluid row is about dr/2 "
         "from the walls, where walls attract the fluid (docs/sph-solver.md section 7); "
-        "move the fluid regions dr/2 away from the walls so that it is dr",
+        "set geometry.first_row: 1 (or move the fluid regions dr/2 away from the walls) so "
+        "that it is dr",
         case_path, sv->vertex_phi);
   struct sph_run_counters rc = {0.0, 0, NULL};
   if (restart) {
@@ -285,7 +289,7 @@ int sph_cmd_run(int argc, char **argv) {
   open_files(&rf, sv, &rc, restart != NULL);
   if (!restart) {
     write_rows(&rf, sv);
-    write_vtu(&rf, &rc, sv);
+    write_vtu(&rf, &rc, sv, 0);
     rc.next_output = cfg.output_interval;
   }
 
@@ -300,7 +304,7 @@ int sph_cmd_run(int argc, char **argv) {
     char msg[1024];
     if (sph_solver_step(sv, cfg.t_end - sv->time, msg, sizeof msg) != 0) {
       write_rows(&rf, sv);
-      write_vtu(&rf, &rc, sv);
+      write_vtu(&rf, &rc, sv, 0);
       flush_files(&rf);
       cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
       fprintf(stderr, "sabre-sph: run failed: %s (last state written to %s)\n", msg, output);
@@ -310,7 +314,7 @@ int sph_cmd_run(int argc, char **argv) {
     int out = sv->time >= rc.next_output - eps || sv->time >= cfg.t_end - eps;
     if (out || sv->step % cfg.diagnostics_every == 0) write_rows(&rf, sv);
     if (out) {
-      write_vtu(&rf, &rc, sv);
+      write_vtu(&rf, &rc, sv, 1);
       while (rc.next_output <= sv->time + eps) rc.next_output += cfg.output_interval;
       flush_files(&rf);
     }

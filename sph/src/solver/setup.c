@@ -136,7 +136,6 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
 
 void sph_solver_free(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++) {
-    free(sv->p[k]);
     free(sv->mu[k]);
   }
   for (int c = 0; c < 3; c++) {

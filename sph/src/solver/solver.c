@@ -20,9 +20,8 @@ static double *grow(double *p, size_t cap) { return cmn_realloc(p, (cap ? cap : 
 static void grow_arrays(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++) {
     size_t n = sv->sys.part[k].n;
-    if (n <= sv->cap[k] && sv->p[k]) continue;
+    if (n <= sv->cap[k] && sv->mu[k]) continue;
     size_t cap = n + n / 4 + 8;
-    sv->p[k] = grow(sv->p[k], cap);
     sv->mu[k] = grow(sv->mu[k], cap);
     if (k == SPH_KIND_FLUID) {
       for (int c = 0; c < 3; c++) {
@@ -99,7 +98,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
   const struct rmn_eos *eos = &sv->eos;
   const double nu = sv->cfg.nu, *g = sv->cfg.gravity;
   for (size_t a = 0; a < f->n; a++) {
-    sv->p[SPH_KIND_FLUID][a] = rmn_eos_pressure(eos, f->rho[a]);
+    s->part[SPH_KIND_FLUID].p[a] = rmn_eos_pressure(eos, f->rho[a]);
     sv->mu[SPH_KIND_FLUID][a] = nu * f->rho[a];
   }
   /* Shepard M(16–17) with the hydrostatic correction p_b + ρ_b g·(r_v − r_b) (full) or its part
@@ -117,7 +116,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
       struct sph_pair pr;
       if (!sph_pair_eval(&sv->kernel, s, v, iv, f, b, &pr)) continue;
       double vw = f->mass[b] / f->rho[b] * pr.w;
-      double pb = sv->p[SPH_KIND_FLUID][b];
+      double pb = s->part[SPH_KIND_FLUID].p[b];
       if (hydro != SPH_VHYDRO_NONE) {
         double r[3] = {pr.r[0], pr.r[1], pr.r[2]}; /* r_v − r_b */
         if (hydro == SPH_VHYDRO_TANGENTIAL) {
@@ -128,7 +127,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
       }
       alpha += vw;
       sum += vw * pb;
-      sum_raw += vw * sv->p[SPH_KIND_FLUID][b];
+      sum_raw += vw * s->part[SPH_KIND_FLUID].p[b];
     }
     double pv = alpha > 0.0 ? sum / alpha : 0.0;
     /* Above the free surface the hydrostatic extrapolation gives a negative pressure that the
@@ -137,7 +136,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
     if (alpha > 0.0) pv = fmax(pv, fmin(sum_raw / alpha, 0.0));
     double pmin = rmn_eos_min_pressure(eos);
     if (!(pv > 0.999 * pmin)) pv = 0.999 * pmin; /* keep ρ(p) defined */
-    sv->p[SPH_KIND_VERTEX][iv] = pv;
+    s->part[SPH_KIND_VERTEX].p[iv] = pv;
     v->rho[iv] = rmn_eos_density(eos, pv);
     sv->mu[SPH_KIND_VERTEX][iv] = nu * v->rho[iv];
   }
@@ -147,11 +146,11 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
     for (int k = 0; k < dim; k++) {
       size_t iv = sg->vertex[k][j];
       rho += v->rho[iv];
-      p += sv->p[SPH_KIND_VERTEX][iv];
+      p += s->part[SPH_KIND_VERTEX].p[iv];
       for (int c = 0; c < 3; c++) vel[c] += v->v[c][iv];
     }
     sg->rho[j] = rho / dim;
-    sv->p[SPH_KIND_SEGMENT][j] = p / dim;
+    s->part[SPH_KIND_SEGMENT].p[j] = p / dim;
     sv->mu[SPH_KIND_SEGMENT][j] = nu * sg->rho[j];
     for (int c = 0; c < 3; c++) sg->v[c][j] = vel[c] / dim;
   }
@@ -196,7 +195,8 @@ static double diffusion_rate(const struct sph_solver *sv, size_t a) {
       sum += f->mass[b] * cab_over_r * pr.dwdr_over_r * pr.dist * pr.dist * varrho / f->rho[b];
     } else {
       /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
-      const double pab = sv->p[SPH_KIND_FLUID][a] - sv->p[SPH_KIND_FLUID][b] - rho_ref * g_r;
+      const double pab =
+          s->part[SPH_KIND_FLUID].p[a] - s->part[SPH_KIND_FLUID].p[b] - rho_ref * g_r;
       sum += f->mass[b] / f->rho[b] * 2.0 * pab * pr.dwdr_over_r;
     }
   }
@@ -228,7 +228,7 @@ void sph_solver_forces(struct sph_solver *sv) {
     }
   }
   const struct sph_op op = {s, &sv->kernel, &sv->nb};
-  const double *pk[SPH_NKINDS] = {sv->p[0], sv->p[1], sv->p[2]};
+  const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const double *muk[SPH_NKINDS] = {sv->mu[0], sv->mu[1], sv->mu[2]};
   const double *vel[SPH_NKINDS][3];
   for (int k = 0; k < SPH_NKINDS; k++)

@@ -7,9 +7,10 @@
  *
  * Particle data live in the infra store (struct sph_system, sabre/sph.h), pressure included (so
  * the output carries it); the solver keeps the fields the store does not carry (accelerations,
- * viscosity, the state at the start of a step) in struct sph_solver, indexed like the store. Every per-particle solver array is reallocated by
- * sph_solver_sync() when the store grows, so that open boundaries (particle creation and
- * deletion, mass-varying vertices, J 10–15) slot in without changing the step.
+ * viscosity, the state at the start of a step) in struct sph_solver, indexed like the store. Every
+ * per-particle solver array is reallocated by sph_solver_sync() when the store grows, so that open
+ * boundaries (particle creation and deletion, mass-varying vertices, J 10–15) slot in without
+ * changing the step.
  *
  * Units: SI. Like the rest of sph/, these functions stop the program on errors they cannot report;
  * case-file errors go through common/ (file, line, key; exit code 2).
@@ -22,6 +23,7 @@
 
 #include "sabre/riemann.h"
 #include "sabre/sph.h"
+#include "sabre/sph_flux.h"
 #include "sabre/sph_walls.h"
 
 struct cmn_case;
@@ -125,6 +127,29 @@ enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TAN
 
 #define SPH_MAX_PROBES 64
 #define SPH_MAX_FORCE_GROUPS 16
+#define SPH_MAX_VERTEX_GROUPS 16
+
+/** Vertex pressure: Shepard M(16–17) (with numerics.vertex_hydrostatic) or the order-m weighted
+ *  least squares of M(64–74) (sabre/sph_robin.h). */
+enum sph_vertex_method { SPH_VVALUES_SHEPARD = 0, SPH_VVALUES_ROBIN = 1 };
+/** What a vertex does when its order-m fit is undetermined (SPH_ROBIN_ETOOFEW). */
+enum sph_vertex_too_few { SPH_VTOOFEW_ERROR = 0, SPH_VTOOFEW_LOWER = 1 };
+
+/** How the pressure of the vertices of one wall group is computed (case section vertex_values). */
+struct sph_vertex_bc {
+  int method;       /**< enum sph_vertex_method */
+  int order;        /**< m of M(66), 1..SPH_ROBIN_M_MAX */
+  double mu[3];     /**< μ1, μ2, μ3 of M(64) (μ2 ≠ 0), n into the fluid */
+  int gravity_flux; /**< μ3 += μ2 ρ_v g·n_v: ∂p/∂n = ρ g·n for Neumann (M §7.2) */
+  int tangential;   /**< hydrostatic correction of the constraint, M(83); 0: M(82) */
+  int too_few;      /**< enum sph_vertex_too_few */
+  int wall;         /**< group: index into geometry.walls (−1 for the default) */
+  int nedges;       /**< 0: the whole wall */
+  long edges[64];   /**< 1-based element numbers within the wall */
+};
+
+/** Imposed volume flux in a periodic flow, M §5 (sabre/sph_flux.h). */
+enum sph_flux_select { SPH_FLUXSEL_OFF = 0, SPH_FLUXSEL_M63 = 1, SPH_FLUXSEL_M58 = 2 };
 
 struct sph_force_group {
   char name[64];
@@ -167,6 +192,19 @@ struct sph_config {
   double gauges[SPH_MAX_PROBES][3];
   int nforces;
   struct sph_force_group forces[SPH_MAX_FORCE_GROUPS];
+  /* vertex values: the default and per-wall-group overrides (a vertex takes the group of its
+   * first segment, as for force groups) */
+  struct sph_vertex_bc vertex_bc;
+  int nvertex_groups;
+  struct sph_vertex_bc vertex_groups[SPH_MAX_VERTEX_GROUPS];
+  /* imposed volume flux, M(56–63) */
+  int flux_method;       /**< enum sph_flux_select */
+  double flux_velocity;  /**< target v = Q/A [m/s] */
+  double flux_point[3];  /**< a point of the measuring slice's mid-plane [m] */
+  double flux_normal[3]; /**< flow direction n_A (unit) */
+  double flux_width;     /**< slice width Δr_A [m] */
+  double flux_area;      /**< cross-section A [m^(d−1)] */
+  double flux_force0;    /**< initial driving acceleration F^0 [m/s²] */
 };
 
 /**
@@ -201,7 +239,18 @@ struct sph_solver {
   int *seg_group;  /**< force group of each segment (−1 none) */
   int *vert_group; /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
-  double vertex_phi;   /**< vertex layer thickness / Δr of the vertex masses [-] */
+  double vertex_phi; /**< vertex layer thickness / Δr of the vertex masses [-] */
+  int *vert_bc;      /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */
+  size_t cap_vert_bc;
+  /** First vertex whose value failed in the last sph_solver_boundary_values() (−1: none), its
+   *  SPH_ROBIN_* status and a message naming the vertex id and position. */
+  long vertex_fail;
+  int vertex_fail_status;
+  char vertex_fail_msg[512];
+  /* imposed volume flux (cfg.flux_method != OFF) */
+  struct sph_flux_ctrl flux_ctrl; /**< controller history ṽ^{n−1}, ṽ^{n−2}, Δt^{n−1}, F^{n−1} */
+  double flux_v;       /**< ṽ measured at the start of the last step, M(56–57) [m/s] */
+  double flux_force;   /**< driving acceleration F^n of the last step, M(58)/M(63) [m/s²] */
   long evaluated_step; /**< step whose start state sph_solver_evaluate() saw, or −1 */
   int gamma_current;   /**< nb's wall data are those of the current positions */
 };
@@ -225,9 +274,21 @@ void sph_solver_sync(struct sph_solver *sv);
 /** Lists, γ, boundary values and forces of the current state (what a step starts with; also
  *  called before wall forces and probes are written). Cheap to call twice: the step reuses it. */
 void sph_solver_evaluate(struct sph_solver *sv);
-/** EOS for every fluid particle, then Shepard vertex values M(16–17) with the hydrostatic
- *  correction, segment values as the mean of their vertices. */
+/**
+ * EOS for every fluid particle, then the vertex pressures — Shepard M(16–17) with the hydrostatic
+ * correction, or per wall group (sph_solver_vertex_groups) the order-m least squares M(64–74) with
+ * M(83) or M(82) — and segment values as the mean of their vertices. A failed least-squares fit
+ * (SPH_ROBIN_ETOOFEW/ESINGULAR/EINVAL) sets sv->vertex_fail to the lowest failing vertex index and
+ * sv->vertex_fail_msg (vertex id, position, normal, distinct distances); sph_solver_step() then
+ * stops with that message. The vertex keeps its plain Shepard value meanwhile.
+ */
 void sph_solver_boundary_values(struct sph_solver *sv);
+/** Assign each vertex its vertex_values group: the first of cfg.vertex_groups naming the wall
+ *  (seg_wall, index into geometry.walls) and element (seg_edge, 1-based) of its first segment;
+ *  otherwise, or with seg_wall NULL, the default cfg.vertex_bc. Called by sph_solver_init(). */
+void sph_solver_vertex_groups(struct sph_solver *sv, const int *seg_wall, const long *seg_edge);
+/** Cross-averaged velocity ṽ = Q_SPH/A in the imposed-flux slice of cfg, M(56–57) [m/s]. */
+double sph_solver_flux_measure(const struct sph_solver *sv);
 /** Accelerations of the fluid, M(14): −Grad^{γ,k}(p)/ρ + Lap^γ(μ, v)/ρ + g, with the wall shear
  *  stress M(19–20); also the volume-diffusion rate. Needs sph_nbrs_gamma() and boundary values. */
 void sph_solver_forces(struct sph_solver *sv);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sabre/common.h"
+#include "sabre/sph_robin.h"
 #include "sabre/sph_solver.h"
 
 #define TRY(x)               \
@@ -84,6 +85,115 @@ static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
   return 0;
 }
 
+/* Keys of one vertex_values entry under `base` ("vertex_values" or "vertex_values.groups[i]"),
+ * each defaulting to *def (docs/sph-case-file.md). */
+static int read_vertex_bc(struct cmn_case *c, const char *base, const struct sph_vertex_bc *def,
+                          struct sph_vertex_bc *bc) {
+  char p[160];
+  *bc = *def;
+  static const char *const methods[] = {"shepard", "least_squares", NULL};
+  snprintf(p, sizeof p, "%s.method", base);
+  TRY(cmn_case_opt_choice(c, p, methods, def->method, &bc->method));
+  long order;
+  snprintf(p, sizeof p, "%s.order", base);
+  TRY(cmn_case_opt_long(c, p, def->order, 1, SPH_ROBIN_M_MAX, &order));
+  bc->order = (int)order;
+  snprintf(p, sizeof p, "%s.mu", base);
+  TRY(cmn_case_opt_doubles(c, p, 3, def->mu, bc->mu));
+  if (!(bc->mu[1] != 0.0) || !isfinite(bc->mu[0]) || !isfinite(bc->mu[1]) || !isfinite(bc->mu[2]))
+    return cmn_case_fail(c, p,
+                         "expected [mu1, mu2, mu3] with mu2 != 0 (M 64: Dirichlet is outside "
+                         "the method)");
+  snprintf(p, sizeof p, "%s.gravity_flux", base);
+  TRY(cmn_case_opt_bool(c, p, def->gravity_flux, &bc->gravity_flux));
+  static const char *const constraints[] = {"M82", "M83", NULL};
+  snprintf(p, sizeof p, "%s.constraint", base);
+  TRY(cmn_case_opt_choice(c, p, constraints, def->tangential, &bc->tangential));
+  static const char *const too_few[] = {"error", "lower", NULL};
+  snprintf(p, sizeof p, "%s.too_few", base);
+  TRY(cmn_case_opt_choice(c, p, too_few, def->too_few, &bc->too_few));
+  return 0;
+}
+
+static int read_vertex_values(struct cmn_case *c, struct sph_config *cfg) {
+  const struct sph_vertex_bc def = {.method = SPH_VVALUES_SHEPARD,
+                                    .order = 1,
+                                    .mu = {0.0, 1.0, 0.0},
+                                    .gravity_flux = 1,
+                                    .tangential = 1,
+                                    .too_few = SPH_VTOOFEW_ERROR,
+                                    .wall = -1};
+  TRY(read_vertex_bc(c, "vertex_values", &def, &cfg->vertex_bc));
+  int n = cmn_case_seq_length(c, "vertex_values.groups");
+  if (n < 0) return -1;
+  if (n > SPH_MAX_VERTEX_GROUPS)
+    return cmn_case_fail(c, "vertex_values.groups", "at most %d groups are supported",
+                         SPH_MAX_VERTEX_GROUPS);
+  int nwalls = cmn_case_seq_length(c, "geometry.walls");
+  for (int i = 0; i < n; i++) {
+    struct sph_vertex_bc *g = &cfg->vertex_groups[i];
+    char base[64], p[128];
+    snprintf(base, sizeof base, "vertex_values.groups[%d]", i);
+    TRY(read_vertex_bc(c, base, &cfg->vertex_bc, g));
+    long wall;
+    snprintf(p, sizeof p, "%s.wall", base);
+    TRY(cmn_case_get_long(c, p, 0, nwalls > 0 ? nwalls - 1 : 0, &wall));
+    if (nwalls <= 0) return cmn_case_fail(c, p, "there are no geometry.walls");
+    g->wall = (int)wall;
+    snprintf(p, sizeof p, "%s.edges", base);
+    int ne = cmn_case_seq_length(c, p);
+    if (ne < 0) return -1;
+    if (ne > (int)(sizeof g->edges / sizeof g->edges[0]))
+      return cmn_case_fail(c, p, "at most %zu edges", sizeof g->edges / sizeof g->edges[0]);
+    g->nedges = ne;
+    for (int e = 0; e < ne; e++) {
+      char q[160];
+      snprintf(q, sizeof q, "%s[%d]", p, e);
+      TRY(cmn_case_get_long(c, q, 1, 1000000000L, &g->edges[e]));
+    }
+  }
+  cfg->nvertex_groups = n;
+  return 0;
+}
+
+/* imposed_flux: absent = off; otherwise M63 unless `method` says M58 or off (M §5). */
+static int read_imposed_flux(struct cmn_case *c, struct sph_config *cfg, int dim) {
+  cfg->flux_method = SPH_FLUXSEL_OFF;
+  if (!cmn_case_has(c, "imposed_flux")) return 0;
+  static const char *const methods[] = {"off", "M63", "M58", NULL};
+  TRY(cmn_case_opt_choice(c, "imposed_flux.method", methods, SPH_FLUXSEL_M63, &cfg->flux_method));
+  const double ex[3] = {1.0, 0.0, 0.0}, zero[3] = {0.0, 0.0, 0.0};
+  TRY(cmn_case_opt_doubles(c, "imposed_flux.direction", dim, ex, cfg->flux_normal));
+  double len = 0.0;
+  for (int k = 0; k < dim; k++) len += cfg->flux_normal[k] * cfg->flux_normal[k];
+  len = sqrt(len);
+  if (!(len > 0.0) || !isfinite(len))
+    return cmn_case_fail(c, "imposed_flux.direction", "expected a non-zero vector");
+  for (int k = 0; k < 3; k++) cfg->flux_normal[k] = k < dim ? cfg->flux_normal[k] / len : 0.0;
+  TRY(cmn_case_opt_doubles(c, "imposed_flux.point", dim, zero, cfg->flux_point));
+  double dr;
+  TRY(cmn_case_get_positive(c, "geometry.dr", &dr));
+  TRY(cmn_case_opt_positive(c, "imposed_flux.width", 2.0 * dr, &cfg->flux_width));
+  if (dim == 1)
+    TRY(cmn_case_opt_positive(c, "imposed_flux.area", 1.0, &cfg->flux_area));
+  else
+    TRY(cmn_case_get_positive(c, "imposed_flux.area", &cfg->flux_area));
+  const int has_v = cmn_case_has(c, "imposed_flux.velocity"),
+            has_q = cmn_case_has(c, "imposed_flux.flux");
+  if (has_v == has_q)
+    return cmn_case_fail(c, "imposed_flux",
+                         "give exactly one of 'velocity' (bulk velocity Q/A, m/s) and 'flux' (Q)");
+  if (has_v) {
+    TRY(cmn_case_get_double(c, "imposed_flux.velocity", -INFINITY, INFINITY, &cfg->flux_velocity));
+  } else {
+    double q;
+    TRY(cmn_case_get_double(c, "imposed_flux.flux", -INFINITY, INFINITY, &q));
+    cfg->flux_velocity = q / cfg->flux_area;
+  }
+  TRY(cmn_case_opt_double(c, "imposed_flux.force0", 0.0, -INFINITY, INFINITY, &cfg->flux_force0));
+  return 0;
+}
+
 int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   memset(cfg, 0, sizeof *cfg);
   /* fluid */
@@ -146,5 +256,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(read_points(c, "probes.pressure", dim, cfg->probes, &cfg->nprobes));
   TRY(read_points(c, "probes.gauges", dim, cfg->gauges, &cfg->ngauges));
   TRY(read_forces(c, cfg));
+  /* vertex values and imposed flux (docs/sph-robin.md) */
+  TRY(read_vertex_values(c, cfg));
+  TRY(read_imposed_flux(c, cfg, dim));
   return 0;
 }

@@ -105,6 +105,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_nbrs_build(&sv->nb, sys, cfg->skin_over_h * sys->h);
   sph_nbrs_gamma(&sv->nb, sys, &sv->kernel);
   sph_solver_sync(sv);
+  sph_solver_vertex_groups(sv, seg_wall, seg_edge);
   sph_solver_boundary_values(sv);
   vertex_masses(sv);
   sph_solver_boundary_values(sv);
@@ -150,6 +151,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->diff);
   free(sv->seg_group);
   free(sv->vert_group);
+  free(sv->vert_bc);
   sph_nbrs_free(&sv->nb);
   sph_system_free(&sv->sys);
   memset(sv, 0, sizeof *sv);

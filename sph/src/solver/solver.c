@@ -12,6 +12,7 @@
 
 #include "operators/pair.h"
 #include "sabre/common.h"
+#include "sabre/sph_robin.h"
 #include "sabre/sph_solver.h"
 
 static double *grow(double *p, size_t cap) { return cmn_realloc(p, (cap ? cap : 1) * sizeof *p); }
@@ -91,6 +92,85 @@ static double dot3(const double *a, const double *b) {
 
 /* ------------------------------------------------------------------------------------------- */
 
+/* The wall group of each vertex for the vertex values: the first group of cfg.vertex_groups that
+ * names the wall (and element) of the vertex's first segment, else the default (−1). */
+void sph_solver_vertex_groups(struct sph_solver *sv, const int *seg_wall, const long *seg_edge) {
+  const struct sph_config *cfg = &sv->cfg;
+  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX], *sg = &sv->sys.part[SPH_KIND_SEGMENT];
+  if (v->n + 1 > sv->cap_vert_bc) {
+    sv->vert_bc = cmn_realloc(sv->vert_bc, (v->n + 1) * sizeof *sv->vert_bc);
+    sv->cap_vert_bc = v->n + 1;
+  }
+  for (size_t i = 0; i < v->n; i++) sv->vert_bc[i] = -2; /* not yet seen */
+  for (size_t j = 0; j < sg->n; j++) {
+    int group = -1;
+    for (int g = 0; g < cfg->nvertex_groups && seg_wall && group < 0; g++) {
+      const struct sph_vertex_bc *b = &cfg->vertex_groups[g];
+      if (b->wall != seg_wall[j]) continue;
+      int match = b->nedges == 0;
+      for (int e = 0; e < b->nedges && !match; e++) match = seg_edge && b->edges[e] == seg_edge[j];
+      if (match) group = g;
+    }
+    for (int k = 0; k < sv->sys.dim; k++) {
+      size_t iv = sg->vertex[k][j];
+      if (sv->vert_bc[iv] == -2) sv->vert_bc[iv] = group;
+    }
+  }
+  for (size_t i = 0; i < v->n; i++)
+    if (sv->vert_bc[i] == -2) sv->vert_bc[i] = -1;
+}
+
+static const struct sph_vertex_bc *vertex_bc(const struct sph_solver *sv, size_t iv) {
+  const int g = sv->vert_bc && iv < sv->cap_vert_bc ? sv->vert_bc[iv] : -1;
+  return g >= 0 ? &sv->cfg.vertex_groups[g] : &sv->cfg.vertex_bc;
+}
+
+/*
+ * Order-m least-squares vertex pressure, M(64–74), with the constraint M(83) (tangential) or M(82),
+ * over the vertex's fluid neighbours; μ3 gains μ2 ρ_v g·n_v with gravity_flux (∂p/∂n = ρ g·n), ρ_v
+ * the Shepard mean density of the neighbours. With too_few = lower, an undetermined order-m fit is
+ * redone at the order the distinct distances allow. Returns an SPH_ROBIN_* status; *m_used the
+ * order of the last fit, *n_distinct the distinct distances found.
+ */
+static int robin_pressure(const struct sph_solver *sv, const struct sph_vertex_bc *bc, size_t iv,
+                          double rho_v, double *pv, int *m_used, int *n_distinct) {
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_nlist *nl = &sv->nb.vf;
+  const double nv[3] = {v->normal[0][iv], v->normal[1][iv], v->normal[2][iv]};
+  struct sph_robin_params prm;
+  sph_robin_params_init(&prm, 2.0 * s->h);
+  prm.m = bc->order;
+  prm.mu1 = bc->mu[0];
+  prm.mu2 = bc->mu[1];
+  prm.mu3 = bc->mu[2];
+  if (bc->gravity_flux) prm.mu3 += bc->mu[1] * rho_v * dot3(sv->cfg.gravity, nv);
+  prm.hydro = bc->tangential;
+  for (int c = 0; c < 3; c++) prm.gravity[c] = sv->cfg.gravity[c];
+  struct sph_robin_ws ws; /* on this thread's stack: no allocation per step */
+  int status;
+  for (;;) {
+    sph_robin_begin(&ws, &prm, s->dim, nv);
+    for (size_t q = nl->offset[iv]; q < nl->offset[iv + 1]; q++) {
+      size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (!sph_pair_eval(&sv->kernel, s, v, iv, f, b, &pr)) continue;
+      const double r_av[3] = {-pr.r[0], -pr.r[1], -pr.r[2]};
+      sph_robin_add(&ws, r_av, f->p[b], f->mass[b] / f->rho[b] * pr.w, f->rho[b]);
+    }
+    status = sph_robin_finish(&ws, pv);
+    if (status == SPH_ROBIN_ETOOFEW && bc->too_few == SPH_VTOOFEW_LOWER && ws.n_distinct >= 1 &&
+        ws.n_distinct < prm.m) {
+      prm.m = ws.n_distinct;
+      continue;
+    }
+    break;
+  }
+  *m_used = prm.m;
+  *n_distinct = ws.n_distinct;
+  return status;
+}
+
 void sph_solver_boundary_values(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
@@ -105,11 +185,12 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
    * tangential to the wall, M(83). */
   const struct sph_nlist *nl = &sv->nb.vf;
   const int hydro = sv->cfg.vertex_hydro;
+  long fail = -1; /* the lowest failing vertex index: deterministic whatever the threads */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t iv = 0; iv < v->n; iv++) {
-    double alpha = 0.0, sum = 0.0, sum_raw = 0.0;
+    double alpha = 0.0, sum = 0.0, sum_raw = 0.0, sum_rho = 0.0;
     const double nv[3] = {v->normal[0][iv], v->normal[1][iv], v->normal[2][iv]};
     for (size_t q = nl->offset[iv]; q < nl->offset[iv + 1]; q++) {
       size_t b = nl->index[q];
@@ -126,10 +207,34 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
         pb += f->rho[b] * dot3(g, r);
       }
       alpha += vw;
+      sum_rho += vw * f->rho[b];
       sum += vw * pb;
       sum_raw += vw * s->part[SPH_KIND_FLUID].p[b];
     }
     double pv = alpha > 0.0 ? sum / alpha : 0.0;
+    const struct sph_vertex_bc *bc = vertex_bc(sv, iv);
+    if (bc->method == SPH_VVALUES_ROBIN && alpha > 0.0) {
+      /* (No fluid within 2h: no fluid particle sees this vertex either; it keeps p_v = 0.) */
+      int m_used, n_distinct;
+      const int st = robin_pressure(sv, bc, iv, sum_rho / alpha, &pv, &m_used, &n_distinct);
+      if (st != SPH_ROBIN_SUCCESS) {
+#ifdef _OPENMP
+#pragma omp critical(sph_vertex_fail)
+#endif
+        if (fail < 0 || (long)iv < fail) {
+          fail = (long)iv;
+          sv->vertex_fail_status = st;
+          snprintf(sv->vertex_fail_msg, sizeof sv->vertex_fail_msg,
+                   "vertex id %lld (index %zu) at (%.9g, %.9g, %.9g), normal (%.6g, %.6g, %.6g): "
+                   "order-%d pressure fit M(74) failed: %s (%s; %d distinct fluid distances "
+                   "along the normal for order %d)",
+                   (long long)v->id[iv], iv, v->x[0][iv], v->x[1][iv], v->x[2][iv], nv[0], nv[1],
+                   nv[2], m_used, sph_robin_status_name(st), sph_robin_strerror(st), n_distinct,
+                   bc->order);
+        }
+        pv = sum_raw / alpha; /* keep the state finite; the step stops on vertex_fail */
+      }
+    }
     /* Above the free surface the hydrostatic extrapolation gives a negative pressure that the
      * fluid does not have (air): it would suck the fluid up the walls. The correction may not take
      * the value below min(plain Shepard value, 0). */
@@ -140,6 +245,7 @@ void sph_solver_boundary_values(struct sph_solver *sv) {
     v->rho[iv] = rmn_eos_density(eos, pv);
     sv->mu[SPH_KIND_VERTEX][iv] = nu * v->rho[iv];
   }
+  sv->vertex_fail = fail;
   const int dim = s->dim;
   for (size_t j = 0; j < sg->n; j++) {
     double rho = 0.0, p = 0.0, vel[3] = {0.0, 0.0, 0.0};
@@ -365,12 +471,47 @@ void sph_solver_evaluate(struct sph_solver *sv) {
   sv->evaluated_step = sv->step;
 }
 
+/* Stop the step when a vertex value could not be computed (docs/sph-robin.md §5). */
+static int vertex_failed(const struct sph_solver *sv, char *msg, size_t msglen) {
+  if (sv->vertex_fail < 0) return 0;
+  snprintf(msg, msglen, "step %ld, t = %.9g s: %s", sv->step + 1, sv->time, sv->vertex_fail_msg);
+  return -1;
+}
+
+/* Uniform driving acceleration F n_A of the imposed flux, added to the momentum equation M(14). */
+static void add_flux_force(struct sph_solver *sv) {
+  if (sv->cfg.flux_method == SPH_FLUXSEL_OFF) return;
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  for (int c = 0; c < sv->sys.dim; c++) {
+    const double fc = sv->flux_force * sv->cfg.flux_normal[c];
+    for (size_t a = 0; a < f->n; a++) sv->acc[c][a] += fc;
+  }
+}
+
+double sph_solver_flux_measure(const struct sph_solver *sv) {
+  const struct sph_config *cfg = &sv->cfg;
+  struct sph_flux_slice sl;
+  for (int c = 0; c < 3; c++) {
+    sl.point[c] = cfg->flux_point[c];
+    sl.normal[c] = cfg->flux_normal[c];
+  }
+  sl.width = cfg->flux_width;
+  sl.area = cfg->flux_area;
+  double q, vt;
+  if (sph_flux_measure_parts(sv->sys.dim, &sl, &sv->sys.domain, &sv->sys.part[SPH_KIND_FLUID], &q,
+                             &vt) != 0)
+    cmn_error("imposed flux: invalid measuring slice (normal, width %g m, area %g)", sl.width,
+              sl.area);
+  return vt;
+}
+
 int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   /* State n: lists, γ^n, boundary values, a^n, D^n, then Δt. */
   if (sv->evaluated_step != sv->step) sph_solver_evaluate(sv);
   sv->evaluated_step = -1;
+  if (vertex_failed(sv, msg, msglen)) return -1;
   sv->gamma_current = 0; /* positions move from here; the corrector's γ sets it again */
   double dt = fmin(sph_solver_timestep(sv), dt_limit);
   if (!(dt > 0.0)) {
@@ -379,6 +520,17 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
     return -1;
   }
   sv->dt = dt;
+  if (sv->cfg.flux_method != SPH_FLUXSEL_OFF) {
+    /* ṽ^{n−1} at the start of the step, M(56–57), then F^n by M(63) (variable-step form M 62) or
+     * M(58); F^n acts during the whole step (both stages). */
+    if (sv->flux_ctrl.steps == 0)
+      sph_flux_ctrl_init(&sv->flux_ctrl,
+                         sv->cfg.flux_method == SPH_FLUXSEL_M58 ? SPH_FLUX_M58 : SPH_FLUX_M63,
+                         sv->cfg.flux_velocity, sv->cfg.flux_force0);
+    sv->flux_v = sph_solver_flux_measure(sv);
+    sv->flux_force = sph_flux_ctrl_update(&sv->flux_ctrl, sv->flux_v, dt);
+    add_flux_force(sv);
+  }
   const size_t n = f->n;
   for (int c = 0; c < 3; c++) {
     memcpy(sv->x0[c], f->x[c], n * sizeof(double));
@@ -399,7 +551,9 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
   continuity(sv, 0.5 * dt);
   sph_solver_boundary_values(sv);
+  if (vertex_failed(sv, msg, msglen)) return -1;
   sph_solver_forces(sv);
+  add_flux_force(sv);
 
   /* Corrector to t + Δt. */
   for (int c = 0; c < 3; c++)

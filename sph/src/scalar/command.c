@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "sabre/common.h"
 #include "sabre/sph_analytic.h"
 #include "sabre/sph_scalar.h"
@@ -266,15 +267,8 @@ static void check_reference_data(const struct reference *r, const struct sph_sca
 /* Outputs                                                                                     */
 /* ------------------------------------------------------------------------------------------ */
 
-static char *join(const char *dir, const char *name) {
-  size_t len = strlen(dir) + strlen(name) + 2;
-  char *p = cmn_malloc(len);
-  snprintf(p, len, "%s/%s", dir, name);
-  return p;
-}
-
 static struct cmn_csv *open_csv(const char *dir, const char *name, int ncols, char **names) {
-  char *path = join(dir, name);
+  char *path = sph_cli_join(dir, name);
   struct cmn_csv *csv = cmn_csv_open(path, ncols, (const char *const *)names);
   if (!csv) cmn_input_error("cannot write '%s'", path);
   free(path);
@@ -399,38 +393,10 @@ static void profiles_write(struct cmn_csv *csv, const struct sph_scalar *s,
 
 int sph_cmd_scalar(int argc, char **argv) {
   gsl_set_error_handler_off(); /* GSL failures come back as statuses (sabre/sph_robin.h) */
-  const char *case_path = NULL, *output = "scalar-output";
-  const char **sets = cmn_malloc((size_t)(argc + 1) * sizeof *sets);
-  int nsets = 0;
-  for (int k = 1; k < argc; k++) {
-    const char *a = argv[k];
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
-      free(sets);
-      return 0;
-    }
-    if (strcmp(a, "--set") == 0 || strcmp(a, "--output") == 0) {
-      if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", a);
-      if (a[2] == 's')
-        sets[nsets++] = argv[++k];
-      else
-        output = argv[++k];
-    } else if (a[0] == '-') {
-      cmn_input_error("scalar: unknown option '%s' (see --help)", a);
-    } else if (!case_path) {
-      case_path = a;
-    } else {
-      cmn_input_error("scalar: one case file only ('%s' and '%s')", case_path, a);
-    }
-  }
-  if (!case_path) cmn_input_error("scalar: no case file given\n%s", usage);
-
-  char err[2048];
-  struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
-  if (!c) cmn_input_error("%s", err);
-  for (int i = 0; i < nsets; i++)
-    if (cmn_case_set(c, sets[i]) != 0) cmn_input_error("--set %s: %s", sets[i], cmn_case_error(c));
-  free(sets);
+  struct sph_cli cli;
+  if (sph_cli_parse(&cli, argc, argv, usage, "scalar-output", NULL, 0)) return 0;
+  const char *case_path = cli.case_path, *output = cli.output;
+  struct cmn_case *c = sph_cli_load(&cli);
   struct sph_geometry g;
   sph_geometry_read(&g, c);
   struct scalar_case cs;
@@ -492,10 +458,7 @@ int sph_cmd_scalar(int argc, char **argv) {
   cmn_message("spectral radius of Lap %.6g 1/m^2: dt limit %.6g s, dt = %.6g s (%.3g of it)",
               radius, limit, dt, dt / limit);
 
-  if (cmn_mkdir_p(output) != 0) cmn_input_error("cannot create the output directory '%s'", output);
-  char *used = join(output, "used_case.yaml");
-  if (cmn_case_write_file(c, used) != 0) cmn_input_error("cannot write '%s'", used);
-  free(used);
+  sph_cli_write_used(c, output);
   write_vertices(output, s);
   struct series sr;
   series_open(&sr, output, s, ref.type != REF_NONE);

@@ -15,6 +15,7 @@
 #include <omp.h>
 #endif
 
+#include "cli.h"
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
@@ -32,20 +33,13 @@ struct run_files {
   char *dir;
 };
 
-static char *join(const char *dir, const char *name) {
-  size_t len = strlen(dir) + strlen(name) + 2;
-  char *p = cmn_malloc(len);
-  snprintf(p, len, "%s/%s", dir, name);
-  return p;
-}
-
 /*
  * Open a CSV; on restart keep the rows of the previous run with time ≤ t_keep (first column), so
  * that the file reads as if the run had not been interrupted.
  */
 static struct cmn_csv *csv_open(const char *dir, const char *name, int ncols,
                                 const char *const *names, int restart, double t_keep) {
-  char *path = join(dir, name);
+  char *path = sph_cli_join(dir, name);
   double *rows = NULL;
   size_t nrows = 0, cap = 0;
   if (restart) {
@@ -180,7 +174,7 @@ static void write_vtu(struct run_files *rf, struct sph_run_counters *rc, struct 
 
 static void checkpoint(const struct sph_solver *sv, const struct sph_run_counters *rc,
                        const char *dir) {
-  char *path = join(dir, "checkpoint.bin");
+  char *path = sph_cli_join(dir, "checkpoint.bin");
   if (sph_checkpoint_write(sv, rc, path) != 0) cmn_error("cannot write checkpoint '%s'", path);
   free(path);
 }
@@ -204,38 +198,14 @@ static void segment_sources(const struct sph_geometry *g, struct cmn_case *c, in
 }
 
 int sph_cmd_run(int argc, char **argv) {
-  const char *case_path = NULL, *output = "sph-output", *restart = NULL;
-  const char **sets = cmn_malloc((size_t)(argc + 1) * sizeof *sets);
-  int nsets = 0;
+  const char *restart = NULL, *threads_arg = NULL;
+  const struct sph_cli_option extra[] = {{"--restart", &restart}, {"--threads", &threads_arg}};
+  struct sph_cli cli;
+  if (sph_cli_parse(&cli, argc, argv, usage, "sph-output", extra, 2)) return 0;
+  const char *case_path = cli.case_path, *output = cli.output;
   long threads = 0;
-  for (int k = 1; k < argc; k++) {
-    const char *a = argv[k];
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
-      free(sets);
-      return 0;
-    }
-    if (strcmp(a, "--set") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--restart") == 0 ||
-        strcmp(a, "--threads") == 0) {
-      if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", a);
-      const char *v = argv[++k];
-      if (a[2] == 's')
-        sets[nsets++] = v;
-      else if (a[2] == 'o')
-        output = v;
-      else if (a[2] == 'r')
-        restart = v;
-      else if (cmn_parse_long(v, 1, 4096, &threads) != 0)
-        cmn_input_error("--threads: expected a whole number in [1, 4096], got '%s'", v);
-    } else if (a[0] == '-') {
-      cmn_input_error("unknown option '%s' (see --help)", a);
-    } else if (!case_path) {
-      case_path = a;
-    } else {
-      cmn_input_error("unexpected argument '%s': one case file only (see --help)", a);
-    }
-  }
-  if (!case_path) cmn_input_error("run: no case file given\n%s", usage);
+  if (threads_arg && cmn_parse_long(threads_arg, 1, 4096, &threads) != 0)
+    cmn_input_error("--threads: expected a whole number in [1, 4096], got '%s'", threads_arg);
 #ifdef _OPENMP
   if (threads > 0) omp_set_num_threads((int)threads);
 #else
@@ -244,20 +214,13 @@ int sph_cmd_run(int argc, char **argv) {
 #endif
 
   char err[2048];
-  struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
-  if (!c) cmn_input_error("%s", err);
-  for (int i = 0; i < nsets; i++)
-    if (cmn_case_set(c, sets[i]) != 0) cmn_input_error("--set %s: %s", sets[i], cmn_case_error(c));
-  free(sets);
+  struct cmn_case *c = sph_cli_load(&cli);
   struct sph_geometry g;
   sph_geometry_read(&g, c);
   struct sph_config cfg;
   sph_config_read(&cfg, c, g.dim);
   cmn_case_check_unused(c);
-  if (cmn_mkdir_p(output) != 0) cmn_input_error("cannot create the output directory '%s'", output);
-  char *used = join(output, "used_case.yaml");
-  if (cmn_case_write_file(c, used) != 0) cmn_input_error("cannot write '%s'", used);
-  free(used);
+  sph_cli_write_used(c, output);
 
   struct sph_system s;
   sph_system_from_geometry(&s, &g);

@@ -80,9 +80,12 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
                        const struct sph_run_counters *rc, int restart) {
   const struct sph_config *cfg = &sv->cfg;
   const int dim = sv->sys.dim;
-  static const char *const dnames[] = {"time",      "dt",       "particles", "mass",    "kinetic",
-                                       "potential", "internal", "max_speed", "max_drho"};
-  rf->diag = csv_open(rf->dir, "diagnostics.csv", 9, dnames, restart, sv->time);
+  static const char *const dnames[] = {
+      "time",     "dt",        "particles", "mass",          "kinetic",   "potential",
+      "internal", "max_speed", "max_drho",  "flux_velocity", "flux_force"};
+  /* with an imposed flux: ṽ in the slice and the driving acceleration (docs/sph-case-file.md) */
+  const int ndiag = cfg->flux_method != SPH_FLUXSEL_OFF ? 11 : 9;
+  rf->diag = csv_open(rf->dir, "diagnostics.csv", ndiag, dnames, restart, sv->time);
   int np = 1 + cfg->nprobes + cfg->ngauges;
   char **pn = cmn_malloc((size_t)np * sizeof *pn);
   pn[0] = "time";
@@ -126,8 +129,10 @@ static void write_rows(struct run_files *rf, struct sph_solver *sv) {
   const struct sph_config *cfg = &sv->cfg;
   struct sph_diagnostics d;
   sph_solver_diagnostics(sv, &d);
-  const double row[9] = {d.time,      d.dt,       d.count,     d.mass,    d.kinetic,
-                         d.potential, d.internal, d.max_speed, d.max_drho};
+  /* imposed flux: ṽ of the state at this time (M 56–57) and F of the step that ended here */
+  const double vt = cfg->flux_method != SPH_FLUXSEL_OFF ? sph_solver_flux_measure(sv) : 0.0;
+  const double row[11] = {d.time,     d.dt,        d.count,    d.mass, d.kinetic,     d.potential,
+                          d.internal, d.max_speed, d.max_drho, vt,     sv->flux_force};
   if (cmn_csv_row(rf->diag, row)) cmn_error("cannot write diagnostics.csv");
   if (rf->probes) {
     double vals[1 + 2 * SPH_MAX_PROBES];

@@ -272,7 +272,7 @@ int sph_cmd_run(int argc, char **argv) {
     char msg[1024];
     if (sph_solver_step(sv, cfg.t_end - sv->time, msg, sizeof msg) != 0) {
       write_rows(&rf, sv);
-      write_vtu(&rf, &rc, sv, 0);
+      write_vtu(&rf, &rc, sv, 1);
       flush_files(&rf);
       cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
       fprintf(stderr, "sabre-sph: run failed: %s (last state written to %s)\n", msg, output);
@@ -282,7 +282,7 @@ int sph_cmd_run(int argc, char **argv) {
     int out = sv->time >= rc.next_output - eps || sv->time >= cfg.t_end - eps;
     if (out || sv->step % cfg.diagnostics_every == 0) write_rows(&rf, sv);
     if (out) {
-      write_vtu(&rf, &rc, sv, 1);
+      write_vtu(&rf, &rc, sv, 0);
       while (rc.next_output <= sv->time + eps) rc.next_output += cfg.output_interval;
       flush_files(&rf);
     }

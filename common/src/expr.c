@@ -1,32 +1,34 @@
-/* Expressions of x for initial profiles, compiled once by recursive descent into a small postfix
- * program and evaluated per quadrature point:
+/* Expressions of named variables for initial profiles (common.h, docs/case-files.md), compiled
+ * once by recursive descent into a small postfix program and evaluated per point:
  *   expr := term (('+'|'-') term)*      term := unary (('*'|'/') unary)*
  *   unary := '-' unary | '+' unary | power     power := atom ('^' unary)?
- *   atom := number | 'x' | 'pi' | name '(' expr ')' | '(' expr ')'                            */
+ *   atom := number | variable | 'pi' | function '(' expr ')' | '(' expr ')'                   */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "sabre/common.h"
 
-enum op { OP_NUM, OP_X, OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_POW, OP_NEG, OP_FUN };
+enum op { OP_NUM, OP_VAR, OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_POW, OP_NEG, OP_FUN };
 
 typedef double (*fun1)(double);
 static const struct {
   const char *name;
   fun1 f;
-} functions[] = {{"sin", sin},   {"cos", cos},  {"tan", tan},   {"exp", exp},   {"log", log},
-                 {"sqrt", sqrt}, {"abs", fabs}, {"tanh", tanh}, {"cosh", cosh}, {"sinh", sinh}};
+} functions[] = {{"sin", sin},   {"cos", cos},   {"tan", tan},  {"asin", asin}, {"acos", acos},
+                 {"atan", atan}, {"exp", exp},   {"log", log},  {"sqrt", sqrt}, {"abs", fabs},
+                 {"tanh", tanh}, {"cosh", cosh}, {"sinh", sinh}};
 
 struct instr {
   enum op op;
-  double value;
-  fun1 f;
+  double value; /* OP_NUM */
+  int var;      /* OP_VAR: index into the variable values */
+  fun1 f;       /* OP_FUN */
 };
 
-struct fv1d_expr {
+struct cmn_expr {
   struct instr *code;
   size_t len, cap;
   int depth; /* stack depth needed */
@@ -34,19 +36,21 @@ struct fv1d_expr {
 
 struct parser {
   const char *text, *pos;
-  struct fv1d_expr *e;
+  int nvars;
+  const char *const *vars;
+  struct cmn_expr *e;
   char *err;
   size_t errlen;
   int failed;
 };
 
-static void emit(struct parser *ps, enum op op, double value, fun1 f) {
-  struct fv1d_expr *e = ps->e;
+static void emit(struct parser *ps, enum op op, double value, int var, fun1 f) {
+  struct cmn_expr *e = ps->e;
   if (e->len == e->cap) {
     e->cap = e->cap ? 2 * e->cap : 16;
     e->code = cmn_realloc(e->code, e->cap * sizeof *e->code);
   }
-  e->code[e->len++] = (struct instr){op, value, f};
+  e->code[e->len++] = (struct instr){op, value, var, f};
 }
 
 static void fail(struct parser *ps, const char *what) {
@@ -79,7 +83,7 @@ static void parse_atom(struct parser *ps) {
     double v = strtod(p, &end);
     if (end == p) return fail(ps, "bad number");
     ps->pos = end;
-    emit(ps, OP_NUM, v, NULL);
+    emit(ps, OP_NUM, v, 0, NULL);
     return;
   }
   if (isalpha((unsigned char)*p)) {
@@ -87,8 +91,11 @@ static void parse_atom(struct parser *ps) {
     while (isalnum((unsigned char)*q) || *q == '_') ++q;
     size_t n = (size_t)(q - p);
     ps->pos = q;
-    if (n == 1 && *p == 'x') return emit(ps, OP_X, 0.0, NULL);
-    if (n == 2 && strncmp(p, "pi", 2) == 0) return emit(ps, OP_NUM, 3.14159265358979323846, NULL);
+    for (int k = 0; k < ps->nvars; ++k)
+      if (strlen(ps->vars[k]) == n && strncmp(p, ps->vars[k], n) == 0)
+        return emit(ps, OP_VAR, 0.0, k, NULL);
+    if (n == 2 && strncmp(p, "pi", 2) == 0)
+      return emit(ps, OP_NUM, 3.14159265358979323846, 0, NULL);
     for (size_t k = 0; k < sizeof functions / sizeof functions[0]; ++k) {
       if (strlen(functions[k].name) == n && strncmp(p, functions[k].name, n) == 0) {
         skip(ps);
@@ -98,13 +105,18 @@ static void parse_atom(struct parser *ps) {
         skip(ps);
         if (*ps->pos != ')') return fail(ps, "expected ')'");
         ++ps->pos;
-        return emit(ps, OP_FUN, 0.0, functions[k].f);
+        return emit(ps, OP_FUN, 0.0, 0, functions[k].f);
       }
     }
     ps->pos = p;
-    return fail(ps,
-                "unknown name (variables: x, pi; functions: sin cos tan exp log sqrt abs "
-                "tanh cosh sinh)");
+    char what[512];
+    size_t len = (size_t)snprintf(what, sizeof what, "unknown name '%.*s' (variables:", (int)n, p);
+    for (int k = 0; k < ps->nvars && len < sizeof what; ++k)
+      len += (size_t)snprintf(what + len, sizeof what - len, " %s,", ps->vars[k]);
+    if (len < sizeof what)
+      snprintf(what + len, sizeof what - len,
+               " pi; functions: sin cos tan asin acos atan exp log sqrt abs tanh cosh sinh)");
+    return fail(ps, what);
   }
   fail(ps, *p ? "unexpected character" : "unexpected end");
 }
@@ -115,7 +127,7 @@ static void parse_power(struct parser *ps) {
   if (*ps->pos == '^') {
     ++ps->pos;
     parse_unary(ps); /* right associative: 2^-x, 2^3^2 = 2^9 */
-    emit(ps, OP_POW, 0.0, NULL);
+    emit(ps, OP_POW, 0.0, 0, NULL);
   }
 }
 
@@ -124,7 +136,7 @@ static void parse_unary(struct parser *ps) {
   if (*ps->pos == '-') {
     ++ps->pos;
     parse_unary(ps);
-    emit(ps, OP_NEG, 0.0, NULL);
+    emit(ps, OP_NEG, 0.0, 0, NULL);
   } else if (*ps->pos == '+') {
     ++ps->pos;
     parse_unary(ps);
@@ -141,7 +153,7 @@ static void parse_term(struct parser *ps) {
     if (c != '*' && c != '/') return;
     ++ps->pos;
     parse_unary(ps);
-    emit(ps, c == '*' ? OP_MUL : OP_DIV, 0.0, NULL);
+    emit(ps, c == '*' ? OP_MUL : OP_DIV, 0.0, 0, NULL);
   }
 }
 
@@ -154,13 +166,16 @@ static void parse_expr(struct parser *ps) {
     if (c != '+' && c != '-') return;
     ++ps->pos;
     parse_term(ps);
-    emit(ps, c == '+' ? OP_ADD : OP_SUB, 0.0, NULL);
+    emit(ps, c == '+' ? OP_ADD : OP_SUB, 0.0, 0, NULL);
   }
 }
 
-struct fv1d_expr *fv1d_expr_compile(const char *text, char *err, size_t errlen) {
-  struct fv1d_expr *e = cmn_calloc(1, sizeof *e);
-  struct parser ps = {text, text, e, err, errlen, 0};
+struct cmn_expr *cmn_expr_compile(const char *text, int nvars, const char *const *vars, char *err,
+                                  size_t errlen) {
+  struct cmn_expr *e = cmn_calloc(1, sizeof *e);
+  char scratch[8];
+  if (!err || errlen == 0) err = scratch, errlen = sizeof scratch;
+  struct parser ps = {text, text, nvars, vars, e, err, errlen, 0};
   parse_expr(&ps);
   skip(&ps);
   if (!ps.failed && *ps.pos) fail(&ps, "unexpected character");
@@ -168,7 +183,7 @@ struct fv1d_expr *fv1d_expr_compile(const char *text, char *err, size_t errlen) 
   for (size_t k = 0; k < e->len && !ps.failed; ++k) {
     switch (e->code[k].op) {
       case OP_NUM:
-      case OP_X:
+      case OP_VAR:
         ++depth;
         break;
       case OP_NEG:
@@ -181,13 +196,13 @@ struct fv1d_expr *fv1d_expr_compile(const char *text, char *err, size_t errlen) 
     if (depth > e->depth) e->depth = depth;
   }
   if (ps.failed) {
-    fv1d_expr_free(e);
+    cmn_expr_free(e);
     return NULL;
   }
   return e;
 }
 
-double fv1d_expr_eval(const struct fv1d_expr *e, double x) {
+double cmn_expr_eval(const struct cmn_expr *e, const double *vals) {
   double stack_small[32] = {0.0};
   double *st = e->depth <= 32 ? stack_small : cmn_malloc((size_t)e->depth * sizeof(double));
   int top = 0;
@@ -197,8 +212,8 @@ double fv1d_expr_eval(const struct fv1d_expr *e, double x) {
       case OP_NUM:
         st[top++] = in->value;
         break;
-      case OP_X:
-        st[top++] = x;
+      case OP_VAR:
+        st[top++] = vals[in->var];
         break;
       case OP_NEG:
         st[top - 1] = -st[top - 1];
@@ -233,7 +248,7 @@ double fv1d_expr_eval(const struct fv1d_expr *e, double x) {
   return v;
 }
 
-void fv1d_expr_free(struct fv1d_expr *e) {
+void cmn_expr_free(struct cmn_expr *e) {
   if (!e) return;
   free(e->code);
   free(e);

@@ -42,9 +42,9 @@ void fv1d_params_free(struct fv1d_params *p) {
     p->bc[side].signal.table_t = p->bc[side].signal.table_v = NULL;
   }
   struct fv1d_initial *ini = &p->initial;
-  fv1d_expr_free(ini->rho_expr);
-  fv1d_expr_free(ini->p_expr);
-  fv1d_expr_free(ini->u_expr);
+  cmn_expr_free(ini->rho_expr);
+  cmn_expr_free(ini->p_expr);
+  cmn_expr_free(ini->u_expr);
   free(ini->table_x);
   free(ini->table_rho);
   free(ini->table_u);
@@ -120,12 +120,13 @@ static int read_riemann(struct cmn_case *c, struct fv1d_params *p) {
 
 /* A scalar that is either a number or an expression of x. Sets *number or *expr. */
 static int read_number_or_expr(struct cmn_case *c, const char *path, double *number,
-                               struct fv1d_expr **expr) {
+                               struct cmn_expr **expr) {
   const char *text;
   TRY(cmn_case_get_string(c, path, &text));
   if (cmn_parse_double(text, number) == 0) return 0;
   char err[256];
-  *expr = fv1d_expr_compile(text, err, sizeof err);
+  static const char *const vars[] = {"x"};
+  *expr = cmn_expr_compile(text, 1, vars, err, sizeof err);
   if (!*expr) return cmn_case_fail(c, path, "%s", err);
   return 0;
 }

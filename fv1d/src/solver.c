@@ -57,9 +57,9 @@ void fv1d_initial_point(const struct fv1d_params *p, double x, double *rho, doub
     *rho = cmn_interp_linear(ini->ntable, ini->table_x, ini->table_rho, 1, x);
     *u = cmn_interp_linear(ini->ntable, ini->table_x, ini->table_u, 1, x);
   }
-  if (ini->rho_expr) *rho = fv1d_expr_eval(ini->rho_expr, x);
-  if (ini->p_expr) *rho = rmn_eos_density(&p->eos, fv1d_expr_eval(ini->p_expr, x));
-  if (ini->u_expr) *u = fv1d_expr_eval(ini->u_expr, x);
+  if (ini->rho_expr) *rho = cmn_expr_eval(ini->rho_expr, &x);
+  if (ini->p_expr) *rho = rmn_eos_density(&p->eos, cmn_expr_eval(ini->p_expr, &x));
+  if (ini->u_expr) *u = cmn_expr_eval(ini->u_expr, &x);
 }
 
 void fv1d_initial_apply(struct fv1d_solver *s) {

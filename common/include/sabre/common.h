@@ -6,7 +6,8 @@
  *      resolved parameters can be saved as used_case.yaml), `--set key=value` overrides, and a
  *      final check that every key of the file was used (a typo must not fall back to a default);
  *   3. CSV writing (full double precision), CSV table reading (numeric tables with a header, and
- *      linear interpolation in them), and progress lines with ETA on stderr.
+ *      linear interpolation in them), and progress lines with ETA on stderr;
+ *   4. expressions of named variables for initial profiles in case files (cmn_expr_*).
  *
  * This layer belongs to the applications: unlike riemann/, its fatal helpers may exit.
  */
@@ -233,6 +234,32 @@ int cmn_table_check_increasing(const struct cmn_table *t, int col, char *err, si
 double cmn_interp_linear(size_t n, const double *x, const double *y, size_t stride, double xq);
 /** cmn_interp_linear() on columns xcol (abscissa, strictly increasing) and ycol of a table. */
 double cmn_table_interp(const struct cmn_table *t, int xcol, int ycol, double x);
+
+/* ---------------------------------------------------------------------------------------------
+ * Expressions (docs/case-files.md, "Expressions"): initial profiles such as "0.1*sin(4*pi*z)".
+ *
+ * Grammar: numbers (decimal or exponent notation), the caller's variables, the constant pi,
+ * + − * / and ^ (power, right associative: 2^3^2 = 2^9; it binds tighter than a unary sign:
+ * -x^2 = −(x²)), unary + and −, parentheses, and the functions of one argument sin cos tan asin
+ * acos atan exp log sqrt abs tanh cosh sinh (C library semantics: log(−1) is NaN, 1/0 is inf;
+ * callers check the values they need finite). Blanks are ignored between tokens. Compiled once
+ * into a postfix program; evaluation allocates nothing for expressions of nesting depth ≤ 32 and
+ * may run on several threads at once.
+ * ------------------------------------------------------------------------------------------- */
+struct cmn_expr;
+
+/**
+ * Compile `text` with the variables vars[0 .. nvars−1] (names of letters, digits and '_', e.g.
+ * {"x", "y", "z"}). Returns NULL on a syntax error or an unknown name, with a message such as
+ * "expression 'sin(x': expected ')' at column 6" or "expression 'y + 1': unknown name 'y'
+ * (variables: x, pi; functions: ...) at column 1" in err (size errlen; err may be NULL).
+ */
+struct cmn_expr *cmn_expr_compile(const char *text, int nvars, const char *const *vars, char *err,
+                                  size_t errlen);
+/** Value of the expression with vals[i] for variable i (in the units the caller documents). */
+double cmn_expr_eval(const struct cmn_expr *e, const double *vals);
+/** Free a compiled expression (NULL accepted). */
+void cmn_expr_free(struct cmn_expr *e);
 
 /* ---------------------------------------------------------------------------------------------
  * Progress on stderr: "step 1200  t = 0.1234 s  dt = 1.2e-05 s  N = 40000  ETA 00:01:23"

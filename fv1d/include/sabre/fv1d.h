@@ -84,12 +84,11 @@ struct fv1d_region {
   double from, to; /**< cells whose centre lies in [from, to) [m] */
   double rho, u;   /**< state of the region */
 };
-struct fv1d_expr; /* compiled expression in x (see fv1d_expr_compile) */
 struct fv1d_initial {
   double rho, u;              /**< uniform background (used when no expression) */
-  struct fv1d_expr *rho_expr; /**< ρ(x) [kg/m³] or NULL */
-  struct fv1d_expr *p_expr;   /**< p(x) [Pa] or NULL (ρ from the EOS) */
-  struct fv1d_expr *u_expr;   /**< u(x) [m/s] or NULL */
+  struct cmn_expr *rho_expr; /**< ρ(x) [kg/m³] or NULL (cmn_expr of the variable x) */
+  struct cmn_expr *p_expr;   /**< p(x) [Pa] or NULL (ρ from the EOS) */
+  struct cmn_expr *u_expr;   /**< u(x) [m/s] or NULL */
   size_t ntable;              /**< profile table (x, rho, u) length, 0 if none */
   double *table_x, *table_rho, *table_u;
   size_t nregions;
@@ -130,15 +129,6 @@ void fv1d_params_free(struct fv1d_params *params);
  * the case is in fatal mode).
  */
 int fv1d_case_read(struct cmn_case *c, const char *base_dir, struct fv1d_params *params);
-
-/* ---------------------------------------------------------------------------------------------
- * Expressions of x for initial profiles: numbers, x, pi, + − * / ^ (right associative), unary −,
- * parentheses and the functions sin cos tan exp log sqrt abs tanh cosh sinh.
- * ------------------------------------------------------------------------------------------- */
-/** Compile; NULL on a syntax error with a message in err. */
-struct fv1d_expr *fv1d_expr_compile(const char *text, char *err, size_t errlen);
-double fv1d_expr_eval(const struct fv1d_expr *e, double x);
-void fv1d_expr_free(struct fv1d_expr *e);
 
 /* ---------------------------------------------------------------------------------------------
  * Pointwise physics

@@ -164,6 +164,11 @@ struct sph_config {
   double gravity[3];
   /* initial state */
   double u0[3];
+  /** initial.velocity[c] as an expression of x, y, z (cmn_expr, docs/case-files.md) [m/s]; ""
+   *  when it is the number u0[c] */
+  char u0_expr[3][256];
+  char p0_expr[256];   /**< initial.pressure as an expression of x, y, z [Pa], or "" */
+  char rho0_expr[256]; /**< initial.density as an expression of x, y, z [kg/m³], or "" */
   int hydrostatic;     /**< initial pressure hydrostatic below free_surface */
   double free_surface; /**< level of p = 0 along −g [m] (NaN: top of the fluid + Δr/2) */
   /* numerics */

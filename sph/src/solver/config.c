@@ -42,6 +42,60 @@ static int read_points(struct cmn_case *c, const char *path, int dim, double (*p
   return 0;
 }
 
+/* A number, or an expression of the coordinates checked here and kept as text (compiled again by
+ * the set-up): *number or expr (256 characters, "" for a number). */
+static int read_number_or_expr(struct cmn_case *c, const char *path, int dim, double *number,
+                               char *expr) {
+  static const char *const xyz[] = {"x", "y", "z"};
+  const char *text;
+  expr[0] = '\0';
+  TRY(cmn_case_get_string(c, path, &text));
+  if (cmn_parse_double(text, number) == 0) return 0;
+  char err[512];
+  struct cmn_expr *e = cmn_expr_compile(text, dim, xyz, err, sizeof err);
+  if (!e) return cmn_case_fail(c, path, "expected a number or an expression: %s", err);
+  cmn_expr_free(e);
+  if (strlen(text) >= 256) return cmn_case_fail(c, path, "expression longer than 255 characters");
+  snprintf(expr, 256, "%s", text);
+  return 0;
+}
+
+/* initial.velocity (numbers or expressions), initial.pressure (zero, hydrostatic or an
+ * expression), initial.density (an expression, instead of the pressure). */
+static int read_initial_fields(struct cmn_case *c, struct sph_config *cfg, int dim) {
+  if (cmn_case_has(c, "initial.velocity")) {
+    int n = cmn_case_seq_length(c, "initial.velocity");
+    if (n < 0) return -1;
+    if (n != dim)
+      return cmn_case_fail(c, "initial.velocity", "expected %d numbers or expressions, got %d", dim,
+                           n);
+    for (int i = 0; i < dim; i++) {
+      char q[64];
+      snprintf(q, sizeof q, "initial.velocity[%d]", i);
+      TRY(read_number_or_expr(c, q, dim, &cfg->u0[i], cfg->u0_expr[i]));
+    }
+  } else {
+    TRY(opt_vector(c, "initial.velocity", dim, cfg->u0));
+  }
+  const char *pressure;
+  TRY(cmn_case_opt_string(c, "initial.pressure", "zero", &pressure));
+  cfg->hydrostatic = strcmp(pressure, "hydrostatic") == 0;
+  if (!cfg->hydrostatic && strcmp(pressure, "zero") != 0) {
+    double p0;
+    TRY(read_number_or_expr(c, "initial.pressure", dim, &p0, cfg->p0_expr));
+    if (!cfg->p0_expr[0]) snprintf(cfg->p0_expr, sizeof cfg->p0_expr, "%.17g", p0);
+  }
+  if (cmn_case_has(c, "initial.density")) {
+    if (strcmp(pressure, "zero") != 0)
+      return cmn_case_fail(c, "initial.density",
+                           "give initial.pressure or initial.density, not both");
+    double rho0;
+    TRY(read_number_or_expr(c, "initial.density", dim, &rho0, cfg->rho0_expr));
+    if (!cfg->rho0_expr[0]) snprintf(cfg->rho0_expr, sizeof cfg->rho0_expr, "%.17g", rho0);
+  }
+  return 0;
+}
+
 static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
   int n = cmn_case_seq_length(c, "forces");
   if (n < 0) return -1;
@@ -203,9 +257,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_double(c, "fluid.nu", 0.0, 0.0, INFINITY, &cfg->nu));
   TRY(opt_vector(c, "gravity", dim, cfg->gravity));
   /* initial state */
-  TRY(opt_vector(c, "initial.velocity", dim, cfg->u0));
-  static const char *const pressures[] = {"zero", "hydrostatic", NULL};
-  TRY(cmn_case_opt_choice(c, "initial.pressure", pressures, 0, &cfg->hydrostatic));
+  TRY(read_initial_fields(c, cfg, dim));
   cfg->free_surface = NAN;
   if (cmn_case_has(c, "initial.free_surface"))
     TRY(cmn_case_get_double(c, "initial.free_surface", -INFINITY, INFINITY, &cfg->free_surface));

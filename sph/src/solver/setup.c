@@ -1,6 +1,7 @@
 /*
- * Solver set-up: kernel and EOS, initial fluid state (uniform or hydrostatic pressure, masses
- * m_a = ρ_a Δr^d), vertex masses, force groups; and the solver's own per-particle arrays.
+ * Solver set-up: kernel and EOS, initial fluid state (uniform, hydrostatic or expression
+ * profiles of velocity and pressure or density, masses m_a = ρ_a Δr^d), vertex masses, force
+ * groups; and the solver's own per-particle arrays.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -17,6 +18,17 @@ static double hydrostatic_pressure(const struct rmn_eos *e, double g, double d) 
   const double c2 = e->c0 * e->c0;
   if (e->isothermal) return e->b * expm1(g * d / c2);
   return e->b * expm1(e->xi / (e->xi - 1.0) * log1p((e->xi - 1.0) * g * d / c2));
+}
+
+/* An initial profile given as an expression of x, y, z (NULL for ""); sph_config_read() checked
+ * the text, so a failure here is an internal error. */
+static struct cmn_expr *compile_initial(const char *text, const char *key, int dim) {
+  static const char *const xyz[] = {"x", "y", "z"};
+  if (!text[0]) return NULL;
+  char err[512];
+  struct cmn_expr *e = cmn_expr_compile(text, dim, xyz, err, sizeof err);
+  if (!e) cmn_error("%s: %s", key, err);
+  return e;
 }
 
 /*
@@ -89,16 +101,40 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     level += 0.5 * sys->dr;
   }
   const double vol = pow(sys->dr, sys->dim);
+  /* Profiles given as expressions of the coordinates (checked by sph_config_read()). */
+  struct cmn_expr *u_expr[3] = {NULL, NULL, NULL};
+  struct cmn_expr *p_expr = compile_initial(cfg->p0_expr, "initial.pressure", sys->dim);
+  struct cmn_expr *rho_expr = compile_initial(cfg->rho0_expr, "initial.density", sys->dim);
+  for (int c = 0; c < sys->dim; c++)
+    u_expr[c] = compile_initial(cfg->u0_expr[c], "initial.velocity", sys->dim);
+  const double pmin = rmn_eos_min_pressure(&sv->eos);
   for (size_t a = 0; a < f->n; a++) {
+    const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
     double p = 0.0;
     if (cfg->hydrostatic && gnorm > 0.0) {
-      double depth = level - (up[0] * f->x[0][a] + up[1] * f->x[1][a] + up[2] * f->x[2][a]);
+      double depth = level - (up[0] * x[0] + up[1] * x[1] + up[2] * x[2]);
       p = hydrostatic_pressure(&sv->eos, gnorm, fmax(depth, 0.0));
     }
-    f->rho[a] = rmn_eos_density(&sv->eos, p);
+    if (p_expr) p = cmn_expr_eval(p_expr, x);
+    if (!(p > pmin) || !isfinite(p))
+      cmn_input_error(
+          "initial.pressure: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa", p, x[0],
+          x[1], x[2], pmin);
+    f->rho[a] = rho_expr ? cmn_expr_eval(rho_expr, x) : rmn_eos_density(&sv->eos, p);
+    if (!(f->rho[a] > 0.0) || !isfinite(f->rho[a]))
+      cmn_input_error("initial.density: %g kg/m^3 at (%g, %g, %g) is not positive", f->rho[a], x[0],
+                      x[1], x[2]);
     f->mass[a] = f->rho[a] * vol;
-    for (int c = 0; c < 3; c++) f->v[c][a] = c < sys->dim ? cfg->u0[c] : 0.0;
+    for (int c = 0; c < 3; c++) {
+      f->v[c][a] = c < sys->dim ? (u_expr[c] ? cmn_expr_eval(u_expr[c], x) : cfg->u0[c]) : 0.0;
+      if (!isfinite(f->v[c][a]))
+        cmn_input_error("initial.velocity[%d]: %g m/s at (%g, %g, %g) is not finite", c, f->v[c][a],
+                        x[0], x[1], x[2]);
+    }
   }
+  cmn_expr_free(p_expr);
+  cmn_expr_free(rho_expr);
+  for (int c = 0; c < 3; c++) cmn_expr_free(u_expr[c]);
   struct sph_parts *v = &sys->part[SPH_KIND_VERTEX];
   for (size_t i = 0; i < v->n; i++) v->rho[i] = cfg->rho0;
 

@@ -130,8 +130,8 @@ static void run(const struct bench_case *bc, int threads) {
 
 int main(void) {
   const struct bench_case cases[] = {
-      {"2D dam break", case_2d, 300},
-      {"3D dam break", case_3d, 30},
+      {"2D dam break", case_2d, 200},
+      {"3D dam break", case_3d, 20},
   };
   const int threads[] = {1, 2};
   printf("bench-sph: solver steps of a small dam break (t from 0; fixed step counts)\n");

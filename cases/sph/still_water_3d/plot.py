@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""Still water in a closed 3D tank (issue 5, case 1): energies, maximum speed, free surface and
+the final hydrostatic pressure, with the gravity-corrected diffusion (default, local form of M 81)
+and without the correction (M 49).
+usage: plot.py OUTPUT_DIR [--check]
+  OUTPUT_DIR holds the runs of ./check: corrected/ (the case as committed) and uncorrected/.
+  Writes OUTPUT_DIR/still_water_3d.png and prints the measured figures; --check: exit status 1
+  unless every criterion of README.md holds."""
+import csv
+import glob
+import math
+import re
+import struct
+import sys
+
+RHO0, C0, XI, G, H, DR = 1000.0, 15.0, 7.0, 9.81, 0.2125, 0.025
+B = RHO0 * C0 * C0 / XI
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def read_vtu(path):
+    """Points and point arrays of a VTU written with raw appended data and UInt64 headers."""
+    data = open(path, "rb").read()
+    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
+    base = tail.index(b"_") + 1
+    arrays = {}
+    for m in re.finditer(rb'<DataArray type="(\w+)"(?: Name="(\w+)")? NumberOfComponents="(\d)"'
+                         rb' format="appended" offset="(\d+)"', head):
+        typ, name, ncomp, off = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
+        nbytes = struct.unpack_from("<Q", tail, base + off)[0]
+        fmt = {b"Float64": "d", b"Int64": "q", b"UInt8": "B"}[typ]
+        vals = struct.unpack_from("<%d%s" % (nbytes // struct.calcsize(fmt), fmt), tail,
+                                  base + off + 8)
+        key = name.decode() if name else "points"
+        if key not in arrays:
+            arrays[key] = [vals[i:i + ncomp] for i in range(0, len(vals), ncomp)]
+    return arrays
+
+
+def hydrostatic(depth):
+    """Exact hydrostatic pressure of the Tait EOS at a depth (as the initial state)."""
+    if depth <= 0:
+        return 0.0
+    return B * ((1 + (XI - 1) * G * depth / C0**2) ** (XI / (XI - 1)) - 1)
+
+
+def surface(run):
+    p = read_csv(f"{run}/probes.csv")
+    etas = [k for k in p if k.startswith("eta")]
+    return p["time"], [sum(p[k][i] for k in etas) / len(etas) for i in range(len(p["time"]))]
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else "out"
+    check = "--check" in sys.argv
+    ok = True
+
+    def crit(name, good, text):
+        nonlocal ok
+        ok &= good
+        print(f"{'ok  ' if good else 'FAIL'} {name}: {text}")
+
+    d = read_csv(f"{out}/corrected/diagnostics.csv")
+    m0 = d["mass"][0]
+    dm = max(abs(m / m0 - 1) for m in d["mass"])
+    crit("mass", dm <= 1e-12, f"max |M/M0 - 1| = {dm:.2e} (<= 1e-12)")
+    crit("particles", min(d["particles"]) == max(d["particles"]) == d["particles"][0],
+         f"{int(d['particles'][0])} throughout")
+    t_end = d["time"][-1]
+    umax, ref = d["max_speed"][-1], 0.01 * math.sqrt(G * H)
+    crit("rest", t_end >= 20 * math.sqrt(H / G) - 1e-9 and umax < ref,
+         f"max|u| = {umax:.3e} m/s at t = {t_end:.3f} s = {t_end / math.sqrt(H / G):.1f} sqrt(H/g)"
+         f" (< 1% sqrt(gH) = {ref:.3e})")
+    last = sorted(glob.glob(f"{out}/corrected/fluid_*.vtu"))[-1]
+    v = read_vtu(last)
+    err2, n = 0.0, 0
+    zs, ps = [], []
+    for (x, y, z), (p,) in zip(v["points"], v["pressure"]):
+        err2 += (p - hydrostatic(H - z)) ** 2
+        n += 1
+        zs.append(z), ps.append(p)
+    l2 = math.sqrt(err2 / n) / (RHO0 * G * H)
+    crit("hydrostatic", l2 < 0.02, f"L2(p - p_hydro)/(rho0 g H) = {100 * l2:.2f} % (< 2 %) in {last}")
+    ts, eta = surface(f"{out}/corrected")
+    dev = max(abs(e - H) for e in eta)
+    crit("surface", dev <= 0.5 * DR,
+         f"corrected: max |eta - H| = {dev:.4f} m = {dev / DR:.2f} dr (<= 0.5 dr)")
+    tu, etau = surface(f"{out}/uncorrected")
+    t_cmp = tu[-1]
+    eta_c = [e for t, e in zip(ts, eta) if t <= t_cmp + 1e-9][-1]
+    rise = etau[-1] - H
+    crit("uncorrected rises", rise > 0.1 * DR and etau[-1] > eta_c + 0.1 * DR,
+         f"uncorrected: eta - H = {rise:+.4f} m = {rise / DR:+.2f} dr at t = {t_cmp:.2f} s "
+         f"(corrected {(eta_c - H) / DR:+.2f} dr)")
+
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib is not installed: no figure")
+        if check and not ok:
+            sys.exit(1)
+        return
+    du = read_csv(f"{out}/uncorrected/diagnostics.csv")
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
+    for lab, (t, e) in {"gravity-corrected (local)": (ts, eta), "uncorrected": (tu, etau)}.items():
+        ax1.plot([ti / math.sqrt(H / G) for ti in t], [(ei - H) / DR for ei in e], label=lab)
+    ax1.axhspan(-0.5, 0.5, color="0.9", label="± Δr/2")
+    ax1.set_xlabel("t / sqrt(H/g)")
+    ax1.set_ylabel("(free surface − H) / Δr (mean of 5 gauges)")
+    ax1.legend(fontsize=8)
+    for lab, dd in {"gravity-corrected (local)": d, "uncorrected": du}.items():
+        ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
+                     [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)
+    ax2.axhline(0.01, color="k", ls="--", lw=1, label="1 %")
+    ax2.set_ylim(1e-4, 1)
+    ax2.set_xlabel("t / sqrt(H/g)")
+    ax2.set_ylabel("max|u| / sqrt(gH)")
+    ax2.legend(fontsize=8)
+    ax3.plot([p / (RHO0 * G * H) for p in ps], zs, ".", ms=3, label="SPH, t = %.2f s" % t_end)
+    zz = [i * H / 100 for i in range(101)]
+    ax3.plot([hydrostatic(H - z) / (RHO0 * G * H) for z in zz], zz, "k--", lw=1,
+             label="hydrostatic (Tait)")
+    ax3.set_xlabel("p / (ρ0 g H)")
+    ax3.set_ylabel("z [m]")
+    ax3.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{out}/still_water_3d.png", dpi=120)
+    print(f"figure: {out}/still_water_3d.png")
+    if check and not ok:
+        sys.exit(1)
+
+
+main()

@@ -1,16 +1,20 @@
 /*
  * Boundary-corrected SPH operators at a fluid particle (THEORY §3.2, docs/sph-solver.md §2):
  * Grad^{γ,k} M(37) (k = 1: J 6 / M 11), Div^{γ,k} M(38) (k = 1: J 7 / M 8), Lap^γ J(8) with the
- * harmonic mean J(9). Gather form: particle a sums over its neighbours, deterministic for a fixed
- * thread count. The pair geometry is shared with the solver through operators/pair.h.
+ * harmonic mean J(9); the momentum equation's pressure gradient, in which the walls push but never
+ * pull (operators/pressure.h). Gather form: particle a sums over its neighbours, deterministic for
+ * a fixed thread count. The pair geometry is shared with the solver through operators/pair.h.
  */
 #include <math.h>
 
 #include "operators/pair.h"
+#include "operators/pressure.h"
 #include "sabre/sph_solver.h"
 
-void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 double out[3]) {
+/* Grad^{γ,k}_a(f), M(37); with push_only, a wall pair (vertex or segment) whose weighted sum
+ * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out (sph_op_grad_pressure). */
+static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
+                 int push_only, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
@@ -24,7 +28,9 @@ void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr)) continue;
       const double rho_b = pb->rho[b], vb = pb->mass[b] / rho_b;
       const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
-      const double t = vb * (ratio * f[kind][b] + fa / ratio) * pr.dwdr_over_r;
+      const double sum = ratio * f[kind][b] + fa / ratio;
+      if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
+      const double t = vb * sum * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
     }
   }
@@ -34,10 +40,21 @@ void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NK
     size_t j = nl->index[q];
     const double ratio = sph_rho_ratio_k(rho_a, ps->rho[j], k);
     const double t = ratio * f[SPH_KIND_SEGMENT][j] + fa / ratio;
+    if (push_only && t < 0.0) continue;
     for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
   }
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = g[c] * inv_gamma;
+}
+
+void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
+                 double out[3]) {
+  grad(op, k, f, a, 0, out);
+}
+
+void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
+                          size_t a, double out[3]) {
+  grad(op, k, p, a, 1, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }

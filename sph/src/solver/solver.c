@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "operators/pair.h"
+#include "operators/pressure.h"
 #include "sabre/common.h"
 #include "sabre/sph_robin.h"
 #include "sabre/sph_solver.h"
@@ -345,7 +346,7 @@ void sph_solver_forces(struct sph_solver *sv) {
 #endif
   for (size_t a = 0; a < f->n; a++) {
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
-    sph_op_grad(&op, sv->cfg.grad_k, pk, a, gp);
+    sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, gp); /* walls push, never pull */
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

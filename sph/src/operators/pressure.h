@@ -1,0 +1,26 @@
+/*
+ * The pressure gradient of the momentum equation M(14) (docs/sph-solver.md §4): Grad^{γ,k} of
+ * M(37) in which the wall, i.e. its vertex particles and its segments, pushes the fluid but never
+ * pulls it.
+ */
+#ifndef SPH_OPERATORS_PRESSURE_H
+#define SPH_OPERATORS_PRESSURE_H
+
+#include <stddef.h>
+
+#include "sabre/sph_solver.h"
+
+/**
+ * Grad^{γ,k}_a(p), M(37) [Pa/m], with every wall pair left out whose pressure sum is negative:
+ * a vertex v with (ρ_a/ρ_v)^k p_v + (ρ_v/ρ_a)^k p_a < 0 and a segment s with
+ * (ρ_a/ρ_s)^k p_s + (ρ_s/ρ_a)^k p_a < 0. With p_a + p_wall < 0 those terms pull particle a into
+ * the wall (the wall term of a constant field p is p times the zeroth-order defect of §2, which
+ * points out of the fluid), and nothing else stops it: as a particle whose fluid neighbours
+ * recede (a free surface at a wall) moves into the wall, γ_a falls with Σ m_b w_ab and its
+ * density stays at ρ0. Fluid–fluid pairs are kept as they are. Equals sph_op_grad() wherever
+ * the wall pressure sums are ≥ 0 (still water below its surface).
+ */
+void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
+                          size_t a, double out[3]);
+
+#endif

@@ -85,11 +85,11 @@ struct fv1d_region {
   double rho, u;   /**< state of the region */
 };
 struct fv1d_initial {
-  double rho, u;              /**< uniform background (used when no expression) */
+  double rho, u;             /**< uniform background (used when no expression) */
   struct cmn_expr *rho_expr; /**< ρ(x) [kg/m³] or NULL (cmn_expr of the variable x) */
   struct cmn_expr *p_expr;   /**< p(x) [Pa] or NULL (ρ from the EOS) */
   struct cmn_expr *u_expr;   /**< u(x) [m/s] or NULL */
-  size_t ntable;              /**< profile table (x, rho, u) length, 0 if none */
+  size_t ntable;             /**< profile table (x, rho, u) length, 0 if none */
   double *table_x, *table_rho, *table_u;
   size_t nregions;
   struct fv1d_region *regions;

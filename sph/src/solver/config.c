@@ -96,6 +96,30 @@ static int read_initial_fields(struct cmn_case *c, struct sph_config *cfg, int d
   return 0;
 }
 
+/* The walls a group names: `<base>.wall` (index into geometry.walls) and optional
+ * `<base>.edges` (1-based element numbers within that wall; none: the whole wall). Shared by
+ * force groups and vertex-value groups. */
+static int read_wall_selection(struct cmn_case *c, const char *base, int nwalls, int *wall_out,
+                               long *edges, int max_edges, int *nedges_out) {
+  char p[128];
+  long wall;
+  snprintf(p, sizeof p, "%s.wall", base);
+  TRY(cmn_case_get_long(c, p, 0, nwalls > 0 ? nwalls - 1 : 0, &wall));
+  if (nwalls <= 0) return cmn_case_fail(c, p, "there are no geometry.walls");
+  *wall_out = (int)wall;
+  snprintf(p, sizeof p, "%s.edges", base);
+  int ne = cmn_case_seq_length(c, p);
+  if (ne < 0) return -1;
+  if (ne > max_edges) return cmn_case_fail(c, p, "at most %d edges", max_edges);
+  *nedges_out = ne;
+  for (int e = 0; e < ne; e++) {
+    char q[160];
+    snprintf(q, sizeof q, "%s[%d]", p, e);
+    TRY(cmn_case_get_long(c, q, 1, 1000000000L, &edges[e]));
+  }
+  return 0;
+}
+
 static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
   int n = cmn_case_seq_length(c, "forces");
   if (n < 0) return -1;
@@ -107,7 +131,6 @@ static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
     struct sph_force_group *g = &cfg->forces[i];
     char p[128];
     const char *name;
-    long wall;
     snprintf(p, sizeof p, "forces[%d].name", i);
     TRY(cmn_case_get_string(c, p, &name));
     if (strlen(name) == 0 || strlen(name) >= sizeof g->name || strpbrk(name, ", \"\n"))
@@ -119,21 +142,9 @@ static int read_forces(struct cmn_case *c, struct sph_config *cfg) {
       if (strcmp(cfg->forces[j].name, name) == 0)
         return cmn_case_fail(c, p, "duplicate force group name '%s'", name);
     snprintf(g->name, sizeof g->name, "%s", name);
-    snprintf(p, sizeof p, "forces[%d].wall", i);
-    TRY(cmn_case_get_long(c, p, 0, nwalls > 0 ? nwalls - 1 : 0, &wall));
-    if (nwalls <= 0) return cmn_case_fail(c, p, "there are no geometry.walls");
-    g->wall = (int)wall;
-    snprintf(p, sizeof p, "forces[%d].edges", i);
-    int ne = cmn_case_seq_length(c, p);
-    if (ne < 0) return -1;
-    if (ne > (int)(sizeof g->edges / sizeof g->edges[0]))
-      return cmn_case_fail(c, p, "at most %zu edges", sizeof g->edges / sizeof g->edges[0]);
-    g->nedges = ne;
-    for (int e = 0; e < ne; e++) {
-      char q[160];
-      snprintf(q, sizeof q, "%s[%d]", p, e);
-      TRY(cmn_case_get_long(c, q, 1, 1000000000L, &g->edges[e]));
-    }
+    snprintf(p, sizeof p, "forces[%d]", i);
+    TRY(read_wall_selection(c, p, nwalls, &g->wall, g->edges,
+                            (int)(sizeof g->edges / sizeof g->edges[0]), &g->nedges));
   }
   cfg->nforces = n;
   return 0;
@@ -186,25 +197,11 @@ static int read_vertex_values(struct cmn_case *c, struct sph_config *cfg) {
   int nwalls = cmn_case_seq_length(c, "geometry.walls");
   for (int i = 0; i < n; i++) {
     struct sph_vertex_bc *g = &cfg->vertex_groups[i];
-    char base[64], p[128];
+    char base[64];
     snprintf(base, sizeof base, "vertex_values.groups[%d]", i);
     TRY(read_vertex_bc(c, base, &cfg->vertex_bc, g));
-    long wall;
-    snprintf(p, sizeof p, "%s.wall", base);
-    TRY(cmn_case_get_long(c, p, 0, nwalls > 0 ? nwalls - 1 : 0, &wall));
-    if (nwalls <= 0) return cmn_case_fail(c, p, "there are no geometry.walls");
-    g->wall = (int)wall;
-    snprintf(p, sizeof p, "%s.edges", base);
-    int ne = cmn_case_seq_length(c, p);
-    if (ne < 0) return -1;
-    if (ne > (int)(sizeof g->edges / sizeof g->edges[0]))
-      return cmn_case_fail(c, p, "at most %zu edges", sizeof g->edges / sizeof g->edges[0]);
-    g->nedges = ne;
-    for (int e = 0; e < ne; e++) {
-      char q[160];
-      snprintf(q, sizeof q, "%s[%d]", p, e);
-      TRY(cmn_case_get_long(c, q, 1, 1000000000L, &g->edges[e]));
-    }
+    TRY(read_wall_selection(c, base, nwalls, &g->wall, g->edges,
+                            (int)(sizeof g->edges / sizeof g->edges[0]), &g->nedges));
   }
   cfg->nvertex_groups = n;
   return 0;

@@ -1,6 +1,7 @@
 /*
  * Checkpoints: the whole particle store through its field table (so a field added to the store is
- * saved without touching this file), the run's time, step, last Δt and output counters. Raw
+ * saved without touching this file), the run's time, step, last Δt and output counters, and the
+ * imposed-flux controller's history (M 62–63 depend on the last two measured velocities). Raw
  * native-endian binary: a checkpoint restarts a run on the machine that wrote it, bit-identically
  * for the same thread count (the step depends only on this state).
  */
@@ -12,7 +13,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT3";
+static const char magic[16] = "SABRE-SPH-CKPT4";
 
 #define W(ptr, size, count)                                                      \
   do {                                                                           \
@@ -50,6 +51,19 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   W(&rc->next_output, sizeof(double), 1);
   W(&nout, sizeof nout, 1);
   W(rc->output_times, sizeof(double), (size_t)nout);
+  /* imposed-flux controller, member by member */
+  const struct sph_flux_ctrl *fc = &sv->flux_ctrl;
+  int32_t fmethod = (int32_t)fc->method;
+  int64_t fsteps = fc->steps;
+  W(&fmethod, sizeof fmethod, 1);
+  W(&fc->v_target, sizeof(double), 1);
+  W(&fc->vt1, sizeof(double), 1);
+  W(&fc->vt2, sizeof(double), 1);
+  W(&fc->dt1, sizeof(double), 1);
+  W(&fc->force, sizeof(double), 1);
+  W(&fsteps, sizeof fsteps, 1);
+  W(&sv->flux_v, sizeof(double), 1);
+  W(&sv->flux_force, sizeof(double), 1);
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);
   for (int k = 0; k < SPH_NKINDS; k++) {
@@ -140,6 +154,22 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   rc->output_times = cmn_malloc((size_t)(nout + 1) * sizeof(double));
   rc->outputs = (long)nout;
   R(rc->output_times, sizeof(double), (size_t)nout);
+  {
+    struct sph_flux_ctrl *fc = &sv->flux_ctrl;
+    int32_t fmethod;
+    int64_t fsteps;
+    R(&fmethod, sizeof fmethod, 1);
+    R(&fc->v_target, sizeof(double), 1);
+    R(&fc->vt1, sizeof(double), 1);
+    R(&fc->vt2, sizeof(double), 1);
+    R(&fc->dt1, sizeof(double), 1);
+    R(&fc->force, sizeof(double), 1);
+    R(&fsteps, sizeof fsteps, 1);
+    R(&sv->flux_v, sizeof(double), 1);
+    R(&sv->flux_force, sizeof(double), 1);
+    fc->method = (enum sph_flux_method)fmethod;
+    fc->steps = (long)fsteps;
+  }
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);
   for (int k = 0; k < SPH_NKINDS; k++) {

@@ -13,11 +13,8 @@ the shallow-water equations (frictionless, hydrostatic) moves the front at 2 sqr
 x_f = a + 2 sqrt(g H) t. It is an upper bound: the real front starts from rest while the column's
 vertical motion builds up, and is slowed at its tip.
 """
-import csv
 import math
 import os
-import re
-import struct
 import sys
 
 import matplotlib
@@ -26,45 +23,28 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv, read_pvd, read_vtu, used_dr  # noqa: E402
+
 G = 9.81  # as in case.yaml
-TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
-
-
-def read_points(path):
-    """Point positions of a VTU file in SABRE's raw appended binary format."""
-    raw = open(path, "rb").read()
-    start = raw.index(b"<AppendedData")
-    blob = raw[raw.index(b"_", start) + 1:]
-    m = re.search(r"<Points>\s*<DataArray ([^>]*)/>", raw[:start].decode())
-    attrs = dict(re.findall(r'(\w+)="([^"]*)"', m.group(1)))
-    off = int(attrs["offset"])
-    nbytes = struct.unpack_from("<Q", blob, off)[0]
-    return np.frombuffer(blob, dtype="<d", count=nbytes // 8, offset=off + 8).reshape(-1, 3)
 
 
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     out = sys.argv[1]
-    used = open(os.path.join(out, "used_case.yaml")).read()
-    dr = float(re.search(r"^\s*dr:\s*([0-9.eE+-]+)", used, re.M).group(1))
-    pvd = open(os.path.join(out, "particles.pvd")).read()
+    dr = used_dr(out)
+    fluid = read_pvd(os.path.join(out, "particles.pvd"), part="0")
     t, xf = [], []
-    for m in re.finditer(r'timestep="([^"]+)"[^>]*part="0"[^>]*file="([^"]+)"', pvd):
-        x = read_points(os.path.join(out, m.group(2)))
-        t.append(float(m.group(1)))
+    for ti, f in fluid:
+        x = read_vtu(f)["points"]
+        t.append(ti)
         xf.append(x[:, 0].max() + 0.5 * dr)
     t, xf = np.array(t), np.array(xf)
     # the column from the initial particles: a = last column + dr/2, H = top layer + dr/2 (so that
     # --set geometry.dr=... needs no edit here)
-    first = re.search(r'part="0"[^>]*file="([^"]+)"', pvd).group(1)
-    x0 = read_points(os.path.join(out, first))
+    x0 = read_vtu(fluid[0][1])["points"]
     a_col, h_col = x0[:, 0].max() + 0.5 * dr, x0[:, 2].max() + 0.5 * dr
     u_ritter = 2.0 * math.sqrt(G * h_col)
     d = read_csv(os.path.join(out, "diagnostics.csv"))

@@ -12,11 +12,8 @@ The force is the one the paper plots, the integral of the pressure along the wal
 the vector F of the fluid on the wall (wall group `wedge_left`); its component along the wall's
 outward normal, F = F . (sin 60°, -cos 60°), is positive when the water pushes on the wedge.
 """
-import csv
 import math
 import os
-import re
-import struct
 import sys
 
 import matplotlib
@@ -25,44 +22,24 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv, read_pvd, read_vtu  # noqa: E402
+
 # as in case.yaml
 RHO0, C0, XI, G, H_COL = 1000.0, 40.0, 7.0, 9.81, 1.0
 WALL_L = 0.25  # side of the equilateral wedge [m]
 PUSH = (math.sin(math.radians(60.0)), -math.cos(math.radians(60.0)))  # out of the fluid
 RUNS = (("ferrari", "with volume diffusion M(84)"), ("none", "without volume diffusion"))
 SNAP_TIMES = (0.25, 0.5, 0.75, 1.1, 2.0, 2.5)  # Fig. 11 has 0.5, 0.75, 1.1 and 2.5 s
-TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
-
-
-def read_vtu(path):
-    """Point positions and point data of a VTU file in SABRE's raw appended binary format."""
-    raw = open(path, "rb").read()
-    start = raw.index(b"<AppendedData")
-    blob = raw[raw.index(b"_", start) + 1:]
-    out = {}
-    for arr in re.finditer(r"<DataArray ([^>]*)/>", raw[:start].decode()):
-        attrs = dict(re.findall(r'(\w+)="([^"]*)"', arr.group(1)))
-        code, size = TYPES[attrs["type"]]
-        off = int(attrs["offset"])
-        nbytes = struct.unpack_from("<Q", blob, off)[0]
-        data = np.frombuffer(blob, dtype="<" + code, count=nbytes // size, offset=off + 8)
-        ncomp = int(attrs.get("NumberOfComponents", "1"))
-        out.setdefault(attrs.get("Name", "points"), data.reshape(-1, ncomp) if ncomp > 1 else data)
-    return out
 
 
 def outputs(run_dir):
     """(time, fluid file, boundary file) of every output listed in particles.pvd."""
-    pvd = open(os.path.join(run_dir, "particles.pvd")).read()
     files = {}
-    for m in re.finditer(r'timestep="([^"]+)"[^>]*part="(\d)"[^>]*file="([^"]+)"', pvd):
-        files.setdefault(float(m.group(1)), {})[m.group(2)] = m.group(3)
+    for part in ("0", "1"):
+        for t, f in read_pvd(os.path.join(run_dir, "particles.pvd"), part=part):
+            files.setdefault(t, {})[part] = f
     return sorted((t, f.get("0"), f.get("1")) for t, f in files.items())
 
 
@@ -143,8 +120,8 @@ def main():
     axes = axes[:, 0]
     for ax, ts in zip(axes, times):
         t, ffile, bfile = min(series, key=lambda s: abs(s[0] - ts))
-        p = read_vtu(os.path.join(out, name0, ffile))
-        b = read_vtu(os.path.join(out, name0, bfile))
+        p = read_vtu(ffile)
+        b = read_vtu(bfile)
         x = p["points"]
         pres = RHO0 * C0 * C0 / XI * ((p["density"] / RHO0) ** XI - 1.0)
         sc = ax.scatter(x[:, 0], x[:, 1], c=pres / 1e3, s=1.5, cmap="viridis", vmin=0, vmax=12)

@@ -4,43 +4,19 @@ fluid, open segments in red), vertex particles and fluid particles coloured by g
 
 usage: plot.py OUTPUT_DIR [FIGURE.png]
 
-Reads the VTU files through a small reader for SABRE's appended raw binary format (no VTK needed).
+Reads the VTU files with ../sabre_output.py (SABRE's appended raw binary format, no VTK needed).
 """
-import re
-import struct
+import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
-TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
-
-
-def read_vtu(path):
-    """Return (point_data, cell_data, points, cells) as dicts of numpy arrays."""
-    raw = open(path, "rb").read()
-    start = raw.index(b"<AppendedData")
-    blob = raw[raw.index(b"_", start) + 1:]
-    head = raw[:start].decode()
-    out = {"PointData": {}, "CellData": {}, "Points": {}, "Cells": {}}
-    for sec in out:
-        m = re.search(r"<%s>(.*?)</%s>" % (sec, sec), head, re.S)
-        if not m:
-            continue
-        for arr in re.finditer(r"<DataArray ([^>]*)/>", m.group(1)):
-            attrs = dict(re.findall(r'(\w+)="([^"]*)"', arr.group(1)))
-            code, size = TYPES[attrs["type"]]
-            off = int(attrs["offset"])
-            nbytes = struct.unpack_from("<Q", blob, off)[0]
-            data = np.frombuffer(blob, dtype="<" + code, count=nbytes // size, offset=off + 8)
-            ncomp = int(attrs.get("NumberOfComponents", "1"))
-            if ncomp > 1:
-                data = data.reshape(-1, ncomp)
-            out[sec][attrs.get("Name", "points")] = data
-    return out
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_vtu  # noqa: E402
 
 
 def main():
@@ -48,8 +24,8 @@ def main():
         sys.exit(__doc__)
     outdir = sys.argv[1]
     figure = sys.argv[2] if len(sys.argv) > 2 else outdir + "/mesh.png"
-    fluid = read_vtu(outdir + "/fluid_000000.vtu")
-    bnd = read_vtu(outdir + "/boundary_000000.vtu")
+    fluid = read_vtu(outdir + "/fluid_000000.vtu", by_section=True)
+    bnd = read_vtu(outdir + "/boundary_000000.vtu", by_section=True)
     xf = fluid["Points"]["points"]
     gamma = fluid["PointData"]["gamma"]
     xv = bnd["Points"]["points"]

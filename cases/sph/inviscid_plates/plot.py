@@ -15,11 +15,8 @@ M(39), is therefore the change of E, which diagnostics.csv gives at every step:
   E+(t+) = [E(t) - E(0)] / (rho0 c0^2 H^2)   (energy per unit depth of a periodic cell H long),
 positive when the discrete operators put energy into the flow.
 """
-import csv
 import math
 import os
-import re
-import struct
 import sys
 
 import matplotlib
@@ -28,53 +25,26 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv, read_pvd, read_vtu, used_dr  # noqa: E402
+
 RHO0, C0, H = 1000.0, 10.0, 1.0  # as in case.yaml (dr is read from used_case.yaml)
 E_SCALE = RHO0 * C0 * C0 * H * H
 V_SCALE = C0 / 10.0
 RUNS = (("none", "without volume diffusion"), ("ferrari", "with volume diffusion M(84)"))
-TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
-
-
-def read_vtu(path):
-    """Point positions and point data of a VTU file in SABRE's raw appended binary format."""
-    raw = open(path, "rb").read()
-    start = raw.index(b"<AppendedData")
-    blob = raw[raw.index(b"_", start) + 1:]
-    out = {}
-    for arr in re.finditer(r"<DataArray ([^>]*)/>", raw[:start].decode()):
-        attrs = dict(re.findall(r'(\w+)="([^"]*)"', arr.group(1)))
-        code, size = TYPES[attrs["type"]]
-        off = int(attrs["offset"])
-        nbytes = struct.unpack_from("<Q", blob, off)[0]
-        data = np.frombuffer(blob, dtype="<" + code, count=nbytes // size, offset=off + 8)
-        ncomp = int(attrs.get("NumberOfComponents", "1"))
-        out.setdefault(attrs.get("Name", "points"), data.reshape(-1, ncomp) if ncomp > 1 else data)
-    return out
 
 
 def snapshot(run_dir, t_plus):
     """Fluid particles of the output nearest to t+ (from particles.pvd)."""
-    pvd = open(os.path.join(run_dir, "particles.pvd")).read()
     best = None
-    for m in re.finditer(r'timestep="([^"]+)"[^>]*part="0"[^>]*file="([^"]+)"', pvd):
-        t = float(m.group(1)) * C0 / H
+    for t, f in read_pvd(os.path.join(run_dir, "particles.pvd"), part="0"):
+        t = t * C0 / H
         if best is None or abs(t - t_plus) < abs(best[0] - t_plus):
-            best = (t, m.group(2))
+            best = (t, f)
     if best is None:
         sys.exit("%s/particles.pvd: no fluid output listed" % run_dir)
-    return best[0], read_vtu(os.path.join(run_dir, best[1]))
-
-
-def used_dr(run_dir):
-    """Particle spacing of a run (so that the plot also serves --set geometry.dr=...)."""
-    m = re.search(r"^\s*dr:\s*([0-9.eE+-]+)", open(os.path.join(run_dir, "used_case.yaml")).read(), re.M)
-    return float(m.group(1))
+    return best[0], read_vtu(best[1])
 
 
 def noise(p, dr):

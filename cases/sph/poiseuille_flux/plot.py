@@ -6,13 +6,14 @@ usage: plot.py OUTPUT_DIR [--check]
   OUTPUT_DIR holds the runs of ./check: M63/ (the case as committed) and M58/.
   Writes OUTPUT_DIR/poiseuille_flux.png (if matplotlib is installed) and prints the figures;
   --check: exit status 1 unless the criteria of README.md hold."""
-import csv
 import glob
 import math
 import os
-import re
-import struct
 import sys
+
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv, read_vtu, used_dr  # noqa: E402
 
 H, V, NU = 1.0, 1.0, 0.2              # channel height, target bulk velocity, viscosity
 VMAX = 1.5 * V                        # centre-line velocity of plane Poiseuille flow
@@ -20,44 +21,12 @@ F_EXACT = 12 * NU * V / H**2          # driving acceleration of the steady flow
 T_SETTLED = 1.0                       # errors are taken over [T_SETTLED, end)
 
 
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
-
-
-def read_vtu(path):
-    """Point arrays of a VTU written by sabre-sph (raw appended data, UInt64 headers)."""
-    data = open(path, "rb").read()
-    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
-    base = tail.index(b"_") + 1
-    out = {}
-    pattern = (rb'<DataArray type="(\w+)"(?: Name="(\w+)")? NumberOfComponents="(\d)"'
-               rb' format="appended" offset="(\d+)"')
-    for m in re.finditer(pattern, head):
-        typ, name, ncomp, off = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
-        code = {b"Float64": "d", b"Int64": "q", b"UInt8": "B"}[typ]
-        nbytes = struct.unpack_from("<Q", tail, base + off)[0]
-        count = nbytes // struct.calcsize(code)
-        vals = struct.unpack_from("<%d%s" % (count, code), tail, base + off + 8)
-        key = name.decode() if name else "points"
-        if key not in out:
-            out[key] = [vals[i:i + ncomp] for i in range(0, count, ncomp)]
-    return out
-
-
-def used_dr(run):
-    """geometry.dr of the run (so that --set geometry.dr=... needs no change here)."""
-    text = open(os.path.join(run, "used_case.yaml")).read()
-    return float(re.search(r"^\s+dr:\s*([0-9.eE+-]+)", text, re.M).group(1))
-
-
 def exact(y):
     return 6 * V * y * (H - y) / H**2
 
 
 def bulk_error(run):
-    d = read_csv(os.path.join(run, "diagnostics.csv"))
+    d = read_csv(os.path.join(run, "diagnostics.csv"), lists=True)
     t, e = d["time"], [abs(v - V) / VMAX for v in d["flux_velocity"]]
     # the last step is shortened to end at time.end (a different Δt): left out of the figures
     late = [k for k in range(len(t) - 1) if t[k] >= T_SETTLED]
@@ -87,7 +56,7 @@ def main():
           f"{math.log10(ratio):.2f} orders of magnitude (criterion >= 4; paper: about 5)")
     # velocity profile of the M(63) run at the end
     last = sorted(glob.glob(os.path.join(out, "M63", "fluid_*.vtu")))[-1]
-    a = read_vtu(last)
+    a = read_vtu(last, tuples=True)
     pts, vel = a["points"], a["velocity"]
     perr = max(abs(v[0] - exact(p[1])) for p, v in zip(pts, vel)) / VMAX
     rows = {}

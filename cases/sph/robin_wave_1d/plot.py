@@ -14,7 +14,6 @@ usage: plot.py OUTPUT_DIR [--check]
     error(m = 2) < error(m = 1), time-averaged over the run, and
     the Neumann run's distance from the Robin solution > 5 x error(m = 1) (and so > 5 x m = 2).
 """
-import csv
 import math
 import os
 import sys
@@ -24,14 +23,12 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_analytic import neumann  # noqa: E402  (analytical Neumann solution, cosine series)
 
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv  # noqa: E402
+
 FIG6_TIMES = (0.1, 0.22, 0.7, 0.81)  # M Fig. 6 caption (the text says 0.82 for the last one)
 NEUMANN_FACTOR = 5.0
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
 def time_mean(t, e, t_max=None):

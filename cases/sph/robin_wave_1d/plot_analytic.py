@@ -10,8 +10,8 @@ The Neumann solution that the paper superimposes (du/dn = 0 at both ends, same i
 computed here from its cosine series:
     u = sum_{n odd} 4k/(k^2 - n^2 pi^2) sin(n pi t)/(n pi) cos(n pi x),  k = 2 pi.
 """
-import csv
 import math
+import os
 import sys
 
 import matplotlib
@@ -19,6 +19,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv  # noqa: E402
 
 K = 2.0 * math.pi
 
@@ -33,21 +37,19 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     out = sys.argv[2] if len(sys.argv) > 2 else "robin_wave_analytic.png"
-    with open(sys.argv[1]) as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    times = sorted({r["t"] for r in rows})
+    a = read_csv(sys.argv[1])
+    times = sorted(set(a["t"]))
     fig, axes = plt.subplots(2, 2, figsize=(9, 6.5), sharex=True)
     for ax, t, label in zip(axes.flat, times, "abcd"):
-        sel = [r for r in rows if r["t"] == t]
-        x = np.array([r["x"] for r in sel])
-        u = np.array([r["u"] for r in sel])
+        sel = a["t"] == t
+        x, u = a["x"][sel], a["u"][sel]
         ax.plot(x, u, "k-", label=r"Robin $\partial u/\partial n = u$, M(78)")
         ax.plot(x, neumann(x, t), "b--", label=r"Neumann $\partial u/\partial n = 0$")
         ax.set_title(f"({label}) t = {t:g}")
         ax.set_xlim(0.0, 1.0)
         ax.grid(alpha=0.3)
         # Robin residual at the ends from the tabulated derivative (column u_x)
-        ux0, ux1 = sel[0]["u_x"], sel[-1]["u_x"]
+        ux0, ux1 = a["u_x"][sel][0], a["u_x"][sel][-1]
         print(f"t = {t:g}: u(0) = {u[0]:+.6f}, u(1) = {u[-1]:+.6f}, "
               f"u_x(0) - u(0) = {ux0 - u[0]:.1e}, -u_x(1) - u(1) = {-ux1 - u[-1]:.1e}")
     for ax in axes[1]:

@@ -6,40 +6,17 @@ usage: plot.py OUTPUT_DIR [--check]
   OUTPUT_DIR holds the runs of ./check: corrected/ (the case as committed), linear/, uncorrected/.
   Writes OUTPUT_DIR/still_water_2d.png and prints the measured figures; --check: exit status 1
   unless every criterion of README.md holds."""
-import csv
 import glob
 import math
-import re
-import struct
+import os
 import sys
+
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv, read_vtu  # noqa: E402
 
 RHO0, C0, XI, G, H, DR = 1000.0, 20.0, 7.0, 9.81, 1.025, 0.05
 B = RHO0 * C0 * C0 / XI
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
-
-
-def read_vtu(path):
-    """Points and point arrays of a VTU written with raw appended data and UInt64 headers."""
-    data = open(path, "rb").read()
-    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
-    base = tail.index(b"_") + 1
-    arrays = {}
-    for m in re.finditer(rb'<DataArray type="(\w+)"(?: Name="(\w+)")? NumberOfComponents="(\d)"'
-                         rb' format="appended" offset="(\d+)"', head):
-        typ, name, ncomp, off = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
-        nbytes = struct.unpack_from("<Q", tail, base + off)[0]
-        fmt = {b"Float64": "d", b"Int64": "q", b"UInt8": "B"}[typ]
-        vals = struct.unpack_from("<%d%s" % (nbytes // struct.calcsize(fmt), fmt), tail,
-                                  base + off + 8)
-        key = name.decode() if name else "points"
-        if key not in arrays:
-            arrays[key] = [vals[i:i + ncomp] for i in range(0, len(vals), ncomp)]
-    return arrays
 
 
 def hydrostatic(depth):
@@ -50,7 +27,7 @@ def hydrostatic(depth):
 
 
 def surface(run):
-    p = read_csv(f"{run}/probes.csv")
+    p = read_csv(f"{run}/probes.csv", lists=True)
     etas = [k for k in p if k.startswith("eta")]
     return p["time"], [sum(p[k][i] for k in etas) / len(etas) for i in range(len(p["time"]))]
 
@@ -67,7 +44,7 @@ def main():
 
     runs = {"corrected": "gravity-corrected, local (default)", "linear": "M(81) as printed",
             "uncorrected": "uncorrected M(49)"}
-    d = read_csv(f"{out}/corrected/diagnostics.csv")
+    d = read_csv(f"{out}/corrected/diagnostics.csv", lists=True)
     m0 = d["mass"][0]
     dm = max(abs(m / m0 - 1) for m in d["mass"])
     crit("mass", dm <= 1e-12, f"max |M/M0 - 1| = {dm:.2e} (<= 1e-12)")
@@ -79,7 +56,7 @@ def main():
          f"max|u| = {umax:.3e} m/s at t = {t_end:.3f} s = {t_end / math.sqrt(H / G):.1f} sqrt(H/g)"
          f" (< 1% sqrt(gH) = {ref:.3e})")
     last = sorted(glob.glob(f"{out}/corrected/fluid_*.vtu"))[-1]
-    v = read_vtu(last)
+    v = read_vtu(last, tuples=True)
     err2, n = 0.0, 0
     ys, ps, pe = [], [], []
     for (x, y, _), (p,) in zip(v["points"], v["pressure"]):
@@ -90,7 +67,7 @@ def main():
     l2 = math.sqrt(err2 / n) / (RHO0 * G * H)
     crit("hydrostatic", l2 < 0.02, f"L2(p - p_hydro)/(rho0 g H) = {100 * l2:.2f} % (< 2 %) in {last}")
     f_exact = hydrostatic(H) * 1.0  # floor pressure of the exact Tait column times the width
-    fy = read_csv(f"{out}/corrected/forces.csv")["floor_fy"][-1]
+    fy = read_csv(f"{out}/corrected/forces.csv", lists=True)["floor_fy"][-1]
     crit("floor force", abs(-fy / f_exact - 1) < 0.02,
          f"{-fy:.1f} N downwards against p_hydro(H) x width = {f_exact:.1f} N "
          f"({100 * (-fy / f_exact - 1):+.2f} %, within 2 %)")

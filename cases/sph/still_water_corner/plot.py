@@ -8,9 +8,11 @@ usage: plot.py OUTPUT_DIR [--check]
   --check: exit status 1 unless the criterion of README.md holds."""
 import math
 import os
-import re
-import struct
 import sys
+
+# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_pvd, read_vtu  # noqa: E402
 
 DR, H, WIDTH = 0.05, 0.525, 1.0
 T_SETTLED = 2.0          # the start-up sloshing has decayed by then (README)
@@ -18,35 +20,10 @@ CORNER_X = 3.5 * DR      # "near the corner": within 3.5 dr of a side wall ...
 CORNER_Y = H - 3.5 * DR  # ... and of the free surface (the case's dr; a fixed region)
 
 
-def read_vtu(path):
-    """Point arrays of a VTU written by sabre-sph (raw appended data, UInt64 headers)."""
-    data = open(path, "rb").read()
-    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
-    base = tail.index(b"_") + 1
-    out = {}
-    pattern = (rb'<DataArray type="(\w+)"(?: Name="(\w+)")? NumberOfComponents="(\d)"'
-               rb' format="appended" offset="(\d+)"')
-    for m in re.finditer(pattern, head):
-        typ, name, ncomp, off = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))
-        code = {b"Float64": "d", b"Int64": "q", b"UInt8": "B"}[typ]
-        nbytes = struct.unpack_from("<Q", tail, base + off)[0]
-        count = nbytes // struct.calcsize(code)
-        vals = struct.unpack_from("<%d%s" % (count, code), tail, base + off + 8)
-        key = name.decode() if name else "points"
-        if key not in out:
-            out[key] = [vals[i:i + ncomp] for i in range(0, count, ncomp)]
-    return out
-
-
 def outputs(run):
     """(time, path) of the fluid VTU files listed in particles.pvd."""
-    text = open(os.path.join(run, "particles.pvd")).read()
-    found = []
-    for tag in re.findall(r"<DataSet[^>]*>", text):
-        t, f = re.search(r'timestep="([^"]+)"', tag), re.search(r'file="([^"]+)"', tag)
-        if t and f and "fluid_" in f.group(1):
-            found.append((float(t.group(1)), os.path.join(run, f.group(1))))
-    return found
+    return [(t, f) for t, f in read_pvd(os.path.join(run, "particles.pvd"))
+            if "fluid_" in os.path.basename(f)]
 
 
 def near_corner(p):
@@ -57,7 +34,7 @@ def analyse(run):
     """Per output: time, max speed near the corners, max speed anywhere; last snapshot."""
     rows, last = [], None
     for t, f in outputs(run):
-        a = read_vtu(f)
+        a = read_vtu(f, tuples=True)
         speed = [math.hypot(v[0], v[1]) for v in a["velocity"]]
         corner = [s for s, p in zip(speed, a["points"]) if near_corner(p)]
         rows.append((t, max(corner) if corner else 0.0, max(speed)))

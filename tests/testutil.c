@@ -5,6 +5,9 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 void sabre_assert_rel(double x, double expected, double tol, const char *expr, const char *file,
                       int line) {
@@ -45,4 +48,28 @@ double sabre_rng_uniform(struct sabre_rng *rng, double lo, double hi) {
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   z ^= z >> 31;
   return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
+}
+
+/* Run `body` in a child with stderr in a file; return the exit status and the captured text. */
+int sabre_run_child(void (*body)(void), char *out, size_t len) {
+  char path[] = "/tmp/sabre_test_stderr_XXXXXX";
+  int fd = mkstemp(path);
+  assert_true(fd >= 0);
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    dup2(fd, 2);
+    body();
+    _exit(99);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  FILE *f = fdopen(fd, "r");
+  rewind(f);
+  size_t got = fread(out, 1, len - 1, f);
+  out[got] = '\0';
+  fclose(f);
+  remove(path);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

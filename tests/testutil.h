@@ -35,4 +35,11 @@ void sabre_rng_seed(struct sabre_rng *rng, uint64_t seed);
 /** Uniform in [lo, hi). */
 double sabre_rng_uniform(struct sabre_rng *rng, double lo, double hi);
 
+/**
+ * Run `body` in a forked child with its stderr captured in a temporary file (body must exit, e.g.
+ * through a fatal error). Returns the child's exit status (-1 if it did not exit normally) and
+ * copies up to len − 1 bytes of what it wrote to stderr into out.
+ */
+int sabre_run_child(void (*body)(void), char *out, size_t len);
+
 #endif

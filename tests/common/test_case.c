@@ -447,30 +447,6 @@ static void test_unused(void **state) {
   cmn_case_free(c);
 }
 
-/* Run `body` in a child with stderr in a file; return the exit status and the captured text. */
-static int run_child(void (*body)(void), char *out, size_t len) {
-  char path[] = "/tmp/sabre_test_stderr_XXXXXX";
-  int fd = mkstemp(path);
-  assert_true(fd >= 0);
-  fflush(NULL);
-  pid_t pid = fork();
-  assert_true(pid >= 0);
-  if (pid == 0) {
-    dup2(fd, 2);
-    body();
-    _exit(99); /* body must not return */
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  FILE *f = fdopen(fd, "r");
-  rewind(f);
-  size_t got = fread(out, 1, len - 1, f);
-  out[got] = '\0';
-  fclose(f);
-  remove(path);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 static void fatal_getter(void) {
   struct cmn_case *c = cmn_case_parse("fluid:\n  c0: abc\n", "f.yaml", NULL, 0);
   cmn_set_program_name("/usr/bin/sabre-test");
@@ -488,10 +464,10 @@ static void fatal_unused(void) {
 static void test_fatal_mode(void **state) {
   (void)state;
   char out[1024];
-  assert_int_equal(run_child(fatal_getter, out, sizeof out), CMN_EXIT_INPUT);
+  assert_int_equal(sabre_run_child(fatal_getter, out, sizeof out), CMN_EXIT_INPUT);
   assert_string_equal(
       out, "sabre-test: error: f.yaml:2:7: fluid.c0: expected a positive number, got 'abc'\n");
-  assert_int_equal(run_child(fatal_unused, out, sizeof out), CMN_EXIT_INPUT);
+  assert_int_equal(sabre_run_child(fatal_unused, out, sizeof out), CMN_EXIT_INPUT);
   assert_string_equal(out, "sph: error: f.yaml:2:1: unknown key 'b'\n");
 }
 

@@ -13,30 +13,6 @@
 #include "sabre/common.h"
 #include "testutil.h"
 
-/* Run `body` in a child with stderr in a file; return the exit status and the captured text. */
-static int run_child(void (*body)(void), char *out, size_t len) {
-  char path[] = "/tmp/sabre_test_stderr_XXXXXX";
-  int fd = mkstemp(path);
-  assert_true(fd >= 0);
-  fflush(NULL);
-  pid_t pid = fork();
-  assert_true(pid >= 0);
-  if (pid == 0) {
-    dup2(fd, 2);
-    body();
-    _exit(99);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  FILE *f = fdopen(fd, "r");
-  rewind(f);
-  size_t got = fread(out, 1, len - 1, f);
-  out[got] = '\0';
-  fclose(f);
-  remove(path);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 static void say_things(void) {
   cmn_message("reading %s", "case.yaml");
   cmn_set_program_name("./build/fv1d");
@@ -62,13 +38,13 @@ static void run_error(void) {
 static void test_messages(void **state) {
   (void)state;
   char out[1024], expected[1024];
-  assert_int_equal(run_child(say_things, out, sizeof out), 0);
+  assert_int_equal(sabre_run_child(say_things, out, sizeof out), 0);
   assert_string_equal(out,
                       "sabre: reading case.yaml\nfv1d: warning: cfl = 0.95 is large\n"
                       "sabre: back to default\n");
-  assert_int_equal(run_child(input_error, out, sizeof out), CMN_EXIT_INPUT);
+  assert_int_equal(sabre_run_child(input_error, out, sizeof out), CMN_EXIT_INPUT);
   assert_string_equal(out, "sph: error: --np: expected a positive integer, got 'x'\n");
-  assert_int_equal(run_child(run_error, out, sizeof out), CMN_EXIT_FAILURE);
+  assert_int_equal(sabre_run_child(run_error, out, sizeof out), CMN_EXIT_FAILURE);
   /* "fv1d: error: <path>/test_message.c:<line>: run_error(): particle 42 lost" */
   assert_true(strncmp(out, "fv1d: error: ", 13) == 0);
   snprintf(expected, sizeof expected, "test_message.c:%d: run_error(): particle 42 lost\n",
@@ -218,7 +194,7 @@ static void test_progress(void **state) {
   assert_true(t1 >= t0);
   assert_true(t0 > 0.0);
   char out[1024];
-  assert_int_equal(run_child(progress_lines, out, sizeof out), 0);
+  assert_int_equal(sabre_run_child(progress_lines, out, sizeof out), 0);
   assert_string_equal(out,
                       "step 1200  t = 0.25 s  dt = 1.2e-05 s  N = 40000  ETA 00:00:30\n"
                       "step 0  t = 2 s  dt = 0.001 s  ETA --:--:--\n");

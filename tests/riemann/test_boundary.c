@@ -5,30 +5,11 @@
 #include <gsl/gsl_errno.h>
 #include <math.h>
 
+#include "fixture.h"
 #include "sabre/riemann.h"
 #include "testutil.h"
 
 static const double XIS[] = {1.0, 2.0, 7.0};
-
-struct fixture {
-  struct rmn_workspace *ws;
-  struct rmn_params par;
-};
-
-static int setup(void **state) {
-  static struct fixture f;
-  gsl_set_error_handler_off();
-  f.ws = rmn_workspace_alloc();
-  rmn_params_default(&f.par);
-  *state = &f;
-  return f.ws ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  struct fixture *f = *state;
-  rmn_workspace_free(f->ws);
-  return 0;
-}
 
 /* Random subsonic interior state and imposed value of either kind, either wave direction. */
 static void random_problem(struct sabre_rng *rng, const struct rmn_eos *e, double *rho, double *un,

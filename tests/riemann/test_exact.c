@@ -6,27 +6,9 @@
 #include <gsl/gsl_roots.h>
 #include <math.h>
 
+#include "fixture.h"
 #include "sabre/riemann.h"
 #include "testutil.h"
-
-struct fixture {
-  struct rmn_workspace *ws;
-  struct rmn_params par;
-};
-
-static int setup(void **state) {
-  static struct fixture f;
-  gsl_set_error_handler_off();
-  f.ws = rmn_workspace_alloc();
-  rmn_params_default(&f.par);
-  *state = &f;
-  return f.ws ? 0 : -1;
-}
-
-static int teardown(void **state) {
-  rmn_workspace_free(((struct fixture *)*state)->ws);
-  return 0;
-}
 
 /* Shallow water as ξ = 2: h ↔ ρ with ρ0 = 1 and g = c0²/ρ0, so c = sqrt(g h). */
 static struct rmn_eos shallow_water(double g) {

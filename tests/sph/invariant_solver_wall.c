@@ -21,25 +21,7 @@
 static void box(struct sph_solver *sv, const struct sph_config *cfg, double dr, double W, double HB,
                 int nx, int ny) {
   struct sph_system s;
-  sph_system_init(&s, 2);
-  s.dr = dr;
-  s.h = 2 * dr;
-  s.domain.dim = 2;
-  s.domain.hi[0] = W;
-  s.domain.hi[1] = HB;
-  struct sph_mesh m;
-  sph_mesh_init(&m, 2);
-  const double lo[3] = {0, 0, 0}, hi[3] = {W, HB, 0};
-  sph_mesh_box(&m, lo, hi, dr, 0, 0, sph_mesh_add_source(&m, "box"));
-  sph_mesh_refine(&m, dr);
-  sph_system_add_walls(&s, &m);
-  sph_mesh_free(&m);
-  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, (size_t)(nx * ny));
-  for (int j = 0; j < ny; j++)
-    for (int i = 0; i < nx; i++) {
-      s.part[SPH_KIND_FLUID].x[0][f0 + (size_t)(j * nx + i)] = (i + 1) * dr;
-      s.part[SPH_KIND_FLUID].x[1][f0 + (size_t)(j * nx + i)] = (j + 1) * dr;
-    }
+  fixture_tank(&s, W, HB, dr, nx, ny);
   sph_solver_init(sv, cfg, &s, NULL, NULL);
   sph_system_free(&s);
 }

@@ -90,4 +90,30 @@ static inline void fixture_lattice_offset(struct sph_system *s, int nx, int ny, 
     }
 }
 
+/* A closed tank [0, width] × [0, height] in 2D with its walls meshed at dr (box edges 1 bottom, 2
+ * right, 3 top, 4 left) and nx × ny fluid particles at ((i + 1) dr, (j + 1) dr): first row and
+ * column Δr from the walls. The caller owns *s (sph_system_free). */
+static inline void fixture_tank(struct sph_system *s, double width, double height, double dr,
+                                int nx, int ny) {
+  sph_system_init(s, 2);
+  s->dr = dr;
+  s->h = 2 * dr;
+  s->domain.dim = 2;
+  s->domain.hi[0] = width;
+  s->domain.hi[1] = height;
+  struct sph_mesh m;
+  sph_mesh_init(&m, 2);
+  const double lo[3] = {0, 0, 0}, hi[3] = {width, height, 0};
+  sph_mesh_box(&m, lo, hi, dr, 0, 0, sph_mesh_add_source(&m, "box"));
+  sph_mesh_refine(&m, dr);
+  sph_system_add_walls(s, &m);
+  sph_mesh_free(&m);
+  size_t f0 = sph_system_append(s, SPH_KIND_FLUID, (size_t)(nx * ny));
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      s->part[SPH_KIND_FLUID].x[0][f0 + (size_t)(j * nx + i)] = (i + 1) * dr;
+      s->part[SPH_KIND_FLUID].x[1][f0 + (size_t)(j * nx + i)] = (j + 1) * dr;
+    }
+}
+
 #endif

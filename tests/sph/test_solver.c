@@ -404,25 +404,7 @@ static void test_vertex_above_surface(void **state) {
   sabre_fp_traps_on();
   struct sph_system s;
   const double dr = 0.01, H = 0.105; /* rows at y = dr ... 0.1, surface dr/2 above the top row */
-  sph_system_init(&s, 2);
-  s.dr = dr;
-  s.h = 2 * dr;
-  s.domain.dim = 2;
-  s.domain.hi[0] = 0.2;
-  s.domain.hi[1] = 0.2;
-  struct sph_mesh m;
-  sph_mesh_init(&m, 2);
-  const double lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.2, 0};
-  sph_mesh_box(&m, lo, hi, dr, 0, 0, sph_mesh_add_source(&m, "box"));
-  sph_mesh_refine(&m, dr);
-  sph_system_add_walls(&s, &m);
-  sph_mesh_free(&m);
-  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, 19 * 10);
-  for (int j = 0; j < 10; j++)
-    for (int i = 0; i < 19; i++) {
-      s.part[SPH_KIND_FLUID].x[0][f0 + (size_t)(j * 19 + i)] = (i + 1) * dr;
-      s.part[SPH_KIND_FLUID].x[1][f0 + (size_t)(j * 19 + i)] = (j + 1) * dr;
-    }
+  fixture_tank(&s, 0.2, 0.2, dr, 19, 10);
   struct sph_config cfg;
   fixture_config(&cfg);
   cfg.gravity[1] = -9.81;

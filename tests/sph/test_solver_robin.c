@@ -24,29 +24,10 @@
 enum { NX = 19, NY = 10 };
 static const double DR = 0.01, H = 0.105; /* rows at y = dr ... 0.1, surface dr/2 above */
 
-/* Closed tank 0.2 m × 0.2 m (edges 1 bottom, 2 right, 3 top, 4 left), NX × NY fluid particles
- * with the first row and column Δr from the walls. */
+/* fixture_tank (0.2 m × 0.2 m, NX × NY fluid particles) with its segments' edge numbers. */
 static void tank(struct sph_solver *sv, const struct sph_config *cfg) {
   struct sph_system s;
-  sph_system_init(&s, 2);
-  s.dr = DR;
-  s.h = 2 * DR;
-  s.domain.dim = 2;
-  s.domain.hi[0] = 0.2;
-  s.domain.hi[1] = 0.2;
-  struct sph_mesh m;
-  sph_mesh_init(&m, 2);
-  const double lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.2, 0};
-  sph_mesh_box(&m, lo, hi, DR, 0, 0, sph_mesh_add_source(&m, "box"));
-  sph_mesh_refine(&m, DR);
-  sph_system_add_walls(&s, &m);
-  sph_mesh_free(&m);
-  size_t f0 = sph_system_append(&s, SPH_KIND_FLUID, NX * NY);
-  for (int j = 0; j < NY; j++)
-    for (int i = 0; i < NX; i++) {
-      s.part[SPH_KIND_FLUID].x[0][f0 + (size_t)(j * NX + i)] = (i + 1) * DR;
-      s.part[SPH_KIND_FLUID].x[1][f0 + (size_t)(j * NX + i)] = (j + 1) * DR;
-    }
+  fixture_tank(&s, 0.2, 0.2, DR, NX, NY);
   const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
   int *wall = calloc(sg->n + 1, sizeof *wall);
   long *edge = calloc(sg->n + 1, sizeof *edge);

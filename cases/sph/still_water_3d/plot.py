@@ -6,83 +6,31 @@ usage: plot.py OUTPUT_DIR [--check]
   OUTPUT_DIR holds the runs of ./check: corrected/ (the case as committed) and uncorrected/.
   Writes OUTPUT_DIR/still_water_3d.png and prints the measured figures; --check: exit status 1
   unless every criterion of README.md holds."""
-import glob
 import math
 import os
 import sys
 
-# the shared readers of sabre-sph output: cases/sph/sabre_output.py
+# the shared readers of sabre-sph output and still-water analysis: cases/sph/sabre_output.py and
+# cases/sph/still_water.py
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import read_csv, read_vtu  # noqa: E402
+from sabre_output import read_csv  # noqa: E402
+from still_water import (Criteria, Tank, check_rest, check_surface, plot_profile,  # noqa: E402
+                         pyplot)
 
-RHO0, C0, XI, G, H, DR = 1000.0, 15.0, 7.0, 9.81, 0.2125, 0.025
-B = RHO0 * C0 * C0 / XI
-
-
-def hydrostatic(depth):
-    """Exact hydrostatic pressure of the Tait EOS at a depth (as the initial state)."""
-    if depth <= 0:
-        return 0.0
-    return B * ((1 + (XI - 1) * G * depth / C0**2) ** (XI / (XI - 1)) - 1)
-
-
-def surface(run):
-    p = read_csv(f"{run}/probes.csv", lists=True)
-    etas = [k for k in p if k.startswith("eta")]
-    return p["time"], [sum(p[k][i] for k in etas) / len(etas) for i in range(len(p["time"]))]
+TANK = Tank(rho0=1000.0, c0=15.0, xi=7.0, g=9.81, H=0.2125, dr=0.025)
+G, H, DR = TANK.g, TANK.H, TANK.dr
 
 
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
-    check = "--check" in sys.argv
-    ok = True
+    crit = Criteria("--check" in sys.argv)
 
-    def crit(name, good, text):
-        nonlocal ok
-        ok &= good
-        print(f"{'ok  ' if good else 'FAIL'} {name}: {text}")
+    d, t_end, zs, ps = check_rest(TANK, f"{out}/corrected", 2, crit)
+    (ts, eta), (tu, etau) = check_surface(TANK, out, crit)
 
-    d = read_csv(f"{out}/corrected/diagnostics.csv", lists=True)
-    m0 = d["mass"][0]
-    dm = max(abs(m / m0 - 1) for m in d["mass"])
-    crit("mass", dm <= 1e-12, f"max |M/M0 - 1| = {dm:.2e} (<= 1e-12)")
-    crit("particles", min(d["particles"]) == max(d["particles"]) == d["particles"][0],
-         f"{int(d['particles'][0])} throughout")
-    t_end = d["time"][-1]
-    umax, ref = d["max_speed"][-1], 0.01 * math.sqrt(G * H)
-    crit("rest", t_end >= 20 * math.sqrt(H / G) - 1e-9 and umax < ref,
-         f"max|u| = {umax:.3e} m/s at t = {t_end:.3f} s = {t_end / math.sqrt(H / G):.1f} sqrt(H/g)"
-         f" (< 1% sqrt(gH) = {ref:.3e})")
-    last = sorted(glob.glob(f"{out}/corrected/fluid_*.vtu"))[-1]
-    v = read_vtu(last, tuples=True)
-    err2, n = 0.0, 0
-    zs, ps = [], []
-    for (x, y, z), (p,) in zip(v["points"], v["pressure"]):
-        err2 += (p - hydrostatic(H - z)) ** 2
-        n += 1
-        zs.append(z), ps.append(p)
-    l2 = math.sqrt(err2 / n) / (RHO0 * G * H)
-    crit("hydrostatic", l2 < 0.02, f"L2(p - p_hydro)/(rho0 g H) = {100 * l2:.2f} % (< 2 %) in {last}")
-    ts, eta = surface(f"{out}/corrected")
-    dev = max(abs(e - H) for e in eta)
-    crit("surface", dev <= 0.5 * DR,
-         f"corrected: max |eta - H| = {dev:.4f} m = {dev / DR:.2f} dr (<= 0.5 dr)")
-    tu, etau = surface(f"{out}/uncorrected")
-    t_cmp = tu[-1]
-    eta_c = [e for t, e in zip(ts, eta) if t <= t_cmp + 1e-9][-1]
-    rise = etau[-1] - H
-    crit("uncorrected rises", rise > 0.1 * DR and etau[-1] > eta_c + 0.1 * DR,
-         f"uncorrected: eta - H = {rise:+.4f} m = {rise / DR:+.2f} dr at t = {t_cmp:.2f} s "
-         f"(corrected {(eta_c - H) / DR:+.2f} dr)")
-
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib is not installed: no figure")
-        if check and not ok:
-            sys.exit(1)
+    plt = pyplot()
+    if plt is None:
+        crit.done()
         return
     du = read_csv(f"{out}/uncorrected/diagnostics.csv", lists=True)
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
@@ -100,18 +48,11 @@ def main():
     ax2.set_xlabel("t / sqrt(H/g)")
     ax2.set_ylabel("max|u| / sqrt(gH)")
     ax2.legend(fontsize=8)
-    ax3.plot([p / (RHO0 * G * H) for p in ps], zs, ".", ms=3, label="SPH, t = %.2f s" % t_end)
-    zz = [i * H / 100 for i in range(101)]
-    ax3.plot([hydrostatic(H - z) / (RHO0 * G * H) for z in zz], zz, "k--", lw=1,
-             label="hydrostatic (Tait)")
-    ax3.set_xlabel("p / (ρ0 g H)")
-    ax3.set_ylabel("z [m]")
-    ax3.legend(fontsize=8)
+    plot_profile(ax3, TANK, zs, ps, t_end, [i * H / 100 for i in range(101)], "z [m]")
     fig.tight_layout()
     fig.savefig(f"{out}/still_water_3d.png", dpi=120)
     print(f"figure: {out}/still_water_3d.png")
-    if check and not ok:
-        sys.exit(1)
+    crit.done()
 
 
 main()

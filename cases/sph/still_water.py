@@ -1,0 +1,133 @@
+"""Analysis shared by the still-water plot scripts (cases/sph/still_water_2d, still_water_3d):
+a tank of depth H at rest under gravity, run as committed (corrected/) and without the gravity
+correction of the volume diffusion (uncorrected/, a shorter run). Imported like sabre_output.py
+(the scripts add cases/sph to sys.path). Only the standard library is needed; matplotlib for the
+figures.
+
+    Tank(rho0, c0, xi, g, H, dr)       the case's constants; tank.hydrostatic(depth) [Pa]
+    surface(run)                       free surface from the eta* gauges of probes.csv
+    Criteria(check)                    prints one 'ok  '/'FAIL' line per criterion; done() exits
+    check_rest(tank, run, axis, crit)  criteria mass, particles, rest, hydrostatic
+    check_surface(tank, out, crit)     criteria surface and uncorrected rises
+    pyplot()                           matplotlib.pyplot on the Agg backend, or None
+    plot_profile(ax, tank, ...)        the final pressure against the Tait column
+"""
+import glob
+import math
+import sys
+
+from sabre_output import read_csv, read_vtu
+
+
+class Tank:
+    """Constants of a still-water case: rho0 [kg/m³], c0 [m/s], the Tait exponent xi, g [m/s²],
+    the depth H [m] and the particle spacing dr [m]."""
+
+    def __init__(self, rho0, c0, xi, g, H, dr):
+        self.rho0, self.c0, self.xi, self.g, self.H, self.dr = rho0, c0, xi, g, H, dr
+        self.B = rho0 * c0 * c0 / xi
+
+    def hydrostatic(self, depth):
+        """Exact hydrostatic pressure of the Tait EOS at a depth (as the initial state)."""
+        if depth <= 0:
+            return 0.0
+        xi = self.xi
+        return self.B * ((1 + (xi - 1) * self.g * depth / self.c0**2) ** (xi / (xi - 1)) - 1)
+
+
+def surface(run):
+    """(times, mean elevation of the eta* gauges) of the run directory `run`, from probes.csv."""
+    p = read_csv(f"{run}/probes.csv", lists=True)
+    etas = [k for k in p if k.startswith("eta")]
+    return p["time"], [sum(p[k][i] for k in etas) / len(etas) for i in range(len(p["time"]))]
+
+
+class Criteria:
+    """The criteria of a check: crit(name, good, text) prints 'ok  ' or 'FAIL' with the name and
+    the measured figures; done() exits with status 1 under --check (check=True) unless all held."""
+
+    def __init__(self, check):
+        self.check = check
+        self.ok = True
+
+    def __call__(self, name, good, text):
+        self.ok &= good
+        print(f"{'ok  ' if good else 'FAIL'} {name}: {text}")
+
+    def done(self):
+        if self.check and not self.ok:
+            sys.exit(1)
+
+
+def check_rest(tank, run, axis, crit):
+    """Criteria mass (to 1e-12), particles (constant), rest (max|u| < 1 % sqrt(gH) at the end,
+    after at least 20 sqrt(H/g)) and hydrostatic (L2 error of the pressure of the last fluid VTU
+    < 2 % of rho0 g H) of the run directory `run`; `axis` is the vertical coordinate (1: y in 2D,
+    2: z in 3D). Returns diagnostics.csv as lists, the end time, and the heights and pressures of
+    the particles of the last VTU."""
+    H, G, RHO0 = tank.H, tank.g, tank.rho0
+    d = read_csv(f"{run}/diagnostics.csv", lists=True)
+    m0 = d["mass"][0]
+    dm = max(abs(m / m0 - 1) for m in d["mass"])
+    crit("mass", dm <= 1e-12, f"max |M/M0 - 1| = {dm:.2e} (<= 1e-12)")
+    crit("particles", min(d["particles"]) == max(d["particles"]) == d["particles"][0],
+         f"{int(d['particles'][0])} throughout")
+    t_end = d["time"][-1]
+    umax, ref = d["max_speed"][-1], 0.01 * math.sqrt(G * H)
+    crit("rest", t_end >= 20 * math.sqrt(H / G) - 1e-9 and umax < ref,
+         f"max|u| = {umax:.3e} m/s at t = {t_end:.3f} s = {t_end / math.sqrt(H / G):.1f} sqrt(H/g)"
+         f" (< 1% sqrt(gH) = {ref:.3e})")
+    last = sorted(glob.glob(f"{run}/fluid_*.vtu"))[-1]
+    v = read_vtu(last, tuples=True)
+    err2, n = 0.0, 0
+    hs, ps = [], []
+    for x, (p,) in zip(v["points"], v["pressure"]):
+        err2 += (p - tank.hydrostatic(H - x[axis])) ** 2
+        n += 1
+        hs.append(x[axis]), ps.append(p)
+    l2 = math.sqrt(err2 / n) / (RHO0 * G * H)
+    crit("hydrostatic", l2 < 0.02, f"L2(p - p_hydro)/(rho0 g H) = {100 * l2:.2f} % (< 2 %) in {last}")
+    return d, t_end, hs, ps
+
+
+def check_surface(tank, out, crit):
+    """Criteria surface (the corrected run's free surface within 0.5 dr of H throughout) and
+    uncorrected rises (at the end of out/uncorrected/ its surface is more than 0.1 dr above H and
+    above the corrected one at that time). Returns the two surfaces, (times, eta) each."""
+    H, DR = tank.H, tank.dr
+    ts, eta = surface(f"{out}/corrected")
+    dev = max(abs(e - H) for e in eta)
+    crit("surface", dev <= 0.5 * DR,
+         f"corrected: max |eta - H| = {dev:.4f} m = {dev / DR:.2f} dr (<= 0.5 dr)")
+    tu, etau = surface(f"{out}/uncorrected")
+    t_cmp = tu[-1]
+    eta_c = [e for t, e in zip(ts, eta) if t <= t_cmp + 1e-9][-1]
+    rise = etau[-1] - H
+    crit("uncorrected rises", rise > 0.1 * DR and etau[-1] > eta_c + 0.1 * DR,
+         f"uncorrected: eta - H = {rise:+.4f} m = {rise / DR:+.2f} dr at t = {t_cmp:.2f} s "
+         f"(corrected {(eta_c - H) / DR:+.2f} dr)")
+    return (ts, eta), (tu, etau)
+
+
+def pyplot():
+    """matplotlib.pyplot with the Agg backend, or None (with a message) without matplotlib."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib is not installed: no figure")
+        return None
+    return plt
+
+
+def plot_profile(ax, tank, hs, ps, t_end, grid, label):
+    """The pressures ps at heights hs (time t_end) and the Tait column at the heights grid, both
+    over rho0 g H; label names the vertical axis."""
+    scale = tank.rho0 * tank.g * tank.H
+    ax.plot([p / scale for p in ps], hs, ".", ms=3, label="SPH, t = %.2f s" % t_end)
+    ax.plot([tank.hydrostatic(tank.H - h) / scale for h in grid], grid, "k--", lw=1,
+            label="hydrostatic (Tait)")
+    ax.set_xlabel("p / (ρ0 g H)")
+    ax.set_ylabel(label)
+    ax.legend(fontsize=8)

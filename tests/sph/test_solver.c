@@ -8,7 +8,8 @@
  * - the discrete skew-adjoint defect M(27), <Grad f, B> + <f, Div B>, vanishes without walls for
  *   every k of M(37–38), and with walls approaches the boundary integral −∮ f B·n dS;
  * - vertex masses make the summation density of fluid at rest equal ρ0;
- * - a run stops with a message naming the particle when its density leaves the band.
+ * - a run stops with a message naming the particle when its density leaves the band, or naming
+ *   the lowest index and counting all when particles are behind a wall.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -473,7 +474,8 @@ static void test_hydrostatic_floor(void **state) {
   sph_solver_free(&sv);
 }
 
-/* A particle put behind the floor is reported by name; so is a non-finite velocity. */
+/* Two particles put behind the floor are both counted and the lower index is named, with any
+ * thread count; a non-finite velocity is reported by name too. */
 static void test_escape_and_nan(void **state) {
   (void)state;
   for (int which = 0; which < 2; which++) {
@@ -487,14 +489,33 @@ static void test_escape_and_nan(void **state) {
     struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
     if (which == 0) {
       sabre_fp_traps_on();
-      f->x[1][3] = -0.3 * sv.sys.dr; /* below the floor y = 0 */
+      /* below the floor y = 0: index 3 of the first row and index 100 of the seventh, at
+       * different x (3.5 Δr and 4.5 Δr) */
+      f->x[1][3] = -0.3 * sv.sys.dr;
+      f->x[1][100] = -0.415 * sv.sys.dr;
       sph_nbrs_build(&sv.nb, &sv.sys, 0.2 * sv.sys.h);
-      sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
-      assert_int_equal(sv.nb.escaped, 3);
+#ifdef _OPENMP
+      const int threads = omp_get_max_threads();
+      for (int t = 1; t <= 3; t++) {
+        omp_set_num_threads(t);
+#endif
+        sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
+        assert_int_equal(sv.nb.escaped, 3);
+        assert_int_equal(sv.nb.nescaped, 2);
+#ifdef _OPENMP
+      }
+      omp_set_num_threads(threads);
+#endif
       f->x[1][3] = 0.5 * sv.sys.dr;
       sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
+      assert_int_equal(sv.nb.escaped, 100);
+      assert_int_equal(sv.nb.nescaped, 1);
+      f->x[1][100] = 6.5 * sv.sys.dr;
+      sph_nbrs_gamma(&sv.nb, &sv.sys, &sv.kernel);
       assert_int_equal(sv.nb.escaped, -1);
+      assert_int_equal(sv.nb.nescaped, 0);
       f->x[1][3] = -0.3 * sv.sys.dr;
+      f->x[1][100] = -0.415 * sv.sys.dr;
     } else {
       /* The NaN must reach the check, not trap: traps off, and on this thread only (OpenMP workers
        * keep the trapping environment they were created with). */
@@ -510,6 +531,11 @@ static void test_escape_and_nan(void **state) {
     assert_non_null(strstr(msg, "step 1"));
     assert_non_null(strstr(msg, which ? "non-finite" : "through a wall"));
     assert_non_null(strstr(msg, which ? "id " : "(index 3)"));
+    if (which == 0) { /* both, and only they (the NaN spreads to every neighbour within a step) */
+      char count[64];
+      snprintf(count, sizeof count, "; 2 of %zu fluid particles fail", f->n);
+      assert_non_null(strstr(msg, count));
+    }
     sph_solver_free(&sv);
   }
 }

@@ -50,7 +50,11 @@ struct sph_nbrs {
   double *dist_as;                   /**< per pair: (r_a − r_s)·n_s, distance to the plane [m] */
   double *term_as;                   /**< per pair: the segment's term of γ_a (γ_a = 1 − Σ) */
   size_t cap_pairs;
-  long escaped; /**< after sph_nbrs_gamma: a fluid particle behind its nearest wall, or −1 */
+  /* After sph_nbrs_gamma, from the side test at those positions: */
+  unsigned char *behind; /**< per fluid particle: 1 if behind its nearest wall element(s), else 0 */
+  size_t cap_behind;
+  size_t nescaped; /**< how many fluid particles are behind a wall */
+  long escaped;    /**< the lowest index of those, or −1 */
 };
 
 /** Build cells and lists for s with radius 2h + skin (skin ≥ 0 [m]). Reuses nb's arrays. */

@@ -110,9 +110,13 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
   size_t np = f->n ? nl->offset[f->n] : 0;
   double *dist = cmn_malloc((np + 1) * sizeof *dist);
-  long escaped = -1;
+  if (f->n + 1 > nb->cap_behind) {
+    nb->cap_behind = f->n + f->n / 2 + 16;
+    nb->behind = cmn_realloc(nb->behind, nb->cap_behind * sizeof *nb->behind);
+  }
+  unsigned char *behind = nb->behind;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : escaped)
+#pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
     for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
@@ -120,10 +124,17 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
       pair_wall(s, k, a, nl->index[p], &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
       for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
     }
-    if (sum_row(nb, f, a, dist) && (long)a > escaped) escaped = (long)a;
+    behind[a] = (unsigned char)sum_row(nb, f, a, dist);
   }
   free(dist);
-  nb->escaped = escaped;
+  /* Every particle behind a wall is flagged; the count and the lowest index come from the flags
+   * in index order, so they do not depend on the thread count. */
+  nb->nescaped = 0;
+  nb->escaped = -1;
+  for (size_t a = 0; a < f->n; a++) {
+    if (!behind[a]) continue;
+    if (nb->nescaped++ == 0) nb->escaped = (long)a;
+  }
 }
 
 void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k,
@@ -164,7 +175,7 @@ void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const str
     }
     sum_row(nb, f, a, NULL);
   }
-  /* nb->escaped is the one of the evaluation at these positions. */
+  /* nb->behind, nescaped and escaped are those of the evaluation at these positions. */
   sph_nlist_free(&old);
   for (int c = 0; c < 3; c++) free(old_g[c]);
   free(old_term);
@@ -178,5 +189,6 @@ void sph_nbrs_free(struct sph_nbrs *nb) {
   for (int c = 0; c < 3; c++) free(nb->grad_gamma_as[c]);
   free(nb->dist_as);
   free(nb->term_as);
+  free(nb->behind);
   memset(nb, 0, sizeof *nb);
 }

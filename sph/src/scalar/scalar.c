@@ -77,8 +77,10 @@ void sph_scalar_init(struct sph_scalar *sc, struct sph_system *s, double c, doub
   sph_nbrs_gamma(&sc->nb, sys, &sc->kernel);
   if (sc->nb.escaped >= 0) {
     const long a = sc->nb.escaped;
-    cmn_error("fluid particle %ld at (%g, %g, %g) lies behind a wall", a, f->x[0][a], f->x[1][a],
-              f->x[2][a]);
+    cmn_error(
+        "fluid particle %ld at (%g, %g, %g) lies behind a wall (%zu of %zu fluid particles "
+        "do, the one with the lowest index is named)",
+        a, f->x[0][a], f->x[1][a], f->x[2][a], sc->nb.nescaped, f->n);
   }
   if (phi < 0.0) phi = sph_scalar_auto_layer(sys, &sc->nb);
   sc->phi = phi;

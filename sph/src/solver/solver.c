@@ -448,7 +448,7 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
   long step = sv->step + 1;
   /* The lowest failing index is named, and how many fail: a whole lattice row failing at once
    * (a 1D flow) is otherwise easily read as a defect at the particle named, which is merely the
-   * first of its row in index order. (The side test keeps one escaped particle per evaluation.) */
+   * first of its row in index order. Every particle behind a wall counts (nb.behind). */
   size_t nbad = 0, first = 0;
   const char *first_what = NULL;
   for (size_t a = 0; a < f->n; a++) {
@@ -457,7 +457,7 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
     const char *what = bad ? "a non-finite value" : NULL;
     double r = f->rho[a] / rho_ref;
     if (!what && !(r >= lo && r <= hi)) what = "a density outside numerics.density_band";
-    if (!what && (long)a == sv->nb.escaped) what = "left the fluid domain through a wall";
+    if (!what && sv->nb.behind[a]) what = "left the fluid domain through a wall";
     if (what && nbad++ == 0) {
       first = a;
       first_what = what;

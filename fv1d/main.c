@@ -116,41 +116,14 @@ static int run_riemann(int argc, char **argv) {
 int main(int argc, char **argv) {
   cmn_set_program_name("sabre-fv1d");
   gsl_set_error_handler_off();
-  if (argc < 2) cmn_input_error("missing case file (see --help)");
-  if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-    fputs(usage, stdout);
-    return 0;
-  }
-  if (strcmp(argv[1], "riemann") == 0) return run_riemann(argc, argv);
+  if (argc >= 2 && strcmp(argv[1], "riemann") == 0) return run_riemann(argc, argv);
 
-  const char *case_path = NULL, *output = "fv1d-output";
-  const char *sets[256];
-  int nsets = 0, quiet = 0;
-  for (int k = 1; k < argc; ++k) {
-    if (strcmp(argv[k], "--set") == 0 || strcmp(argv[k], "--output") == 0) {
-      if (k + 1 >= argc) cmn_input_error("%s: missing value", argv[k]);
-      if (argv[k][2] == 's') {
-        if (nsets == 256) cmn_input_error("--set: at most 256 overrides");
-        sets[nsets++] = argv[++k];
-      } else {
-        output = argv[++k];
-      }
-    } else if (strcmp(argv[k], "--quiet") == 0) {
-      quiet = 1;
-    } else if (argv[k][0] == '-') {
-      cmn_input_error("unknown option '%s' (see --help)", argv[k]);
-    } else if (case_path) {
-      cmn_input_error("more than one case file ('%s', '%s')", case_path, argv[k]);
-    } else {
-      case_path = argv[k];
-    }
-  }
-  if (!case_path) cmn_input_error("missing case file (see --help)");
-
-  char err[1024];
-  struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
-  if (!c) cmn_input_error("%s", err);
-  for (int k = 0; k < nsets; ++k) cmn_case_set(c, sets[k]);
+  const char *quiet = NULL;
+  const struct cmn_cli_option options[] = {{"--quiet", &quiet, 1}};
+  struct cmn_cli cli;
+  if (cmn_cli_parse(&cli, argc, argv, NULL, usage, "fv1d-output", options, 1)) return 0;
+  const char *case_path = cli.case_path, *output = cli.output;
+  struct cmn_case *c = cmn_cli_load(&cli);
   char base_dir[4096];
   snprintf(base_dir, sizeof base_dir, "%s", case_path);
   char *slash = strrchr(base_dir, '/');
@@ -161,11 +134,7 @@ int main(int argc, char **argv) {
   struct fv1d_params p;
   fv1d_case_read(c, base_dir, &p); /* fatal mode: exits with the message on bad input */
   if (quiet) p.progress = 0;
-
-  if (cmn_mkdir_p(output) != 0) cmn_input_error("cannot create the output directory '%s'", output);
-  char path[4200];
-  snprintf(path, sizeof path, "%s/used_case.yaml", output);
-  if (cmn_case_write_file(c, path) != 0) cmn_error("cannot write '%s'", path);
+  cmn_cli_write_used(c, output);
 
   struct fv1d_solver *s = fv1d_solver_create(&p);
   struct fv1d_output *out = fv1d_output_open(output, s);

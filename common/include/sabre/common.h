@@ -4,7 +4,8 @@
  *   2. case files: YAML read through libyaml into a small tree, typed getters by path that report
  *      the file, line and expected type, documented defaults written back into the tree (so the
  *      resolved parameters can be saved as used_case.yaml), `--set key=value` overrides, and a
- *      final check that every key of the file was used (a typo must not fall back to a default);
+ *      final check that every key of the file was used (a typo must not fall back to a default),
+ *      and the command line shared by the case-file programs (cmn_cli_*);
  *   3. CSV writing (full double precision), CSV table reading (numeric tables with a header, and
  *      linear interpolation in them), and progress lines with ETA on stderr;
  *   4. expressions of named variables for initial profiles in case files (cmn_expr_*).
@@ -156,6 +157,64 @@ int cmn_case_check_unused(struct cmn_case *c);
 int cmn_case_write(const struct cmn_case *c, FILE *out);
 /** Write it to a file path. 0 / -1. */
 int cmn_case_write_file(const struct cmn_case *c, const char *path);
+
+/* ---------------------------------------------------------------------------------------------
+ * Command lines of the case-file programs (sabre-fv1d, sabre-sph run|scalar):
+ *
+ *   <program> CASE.yaml [--set key=value]... [--output DIR] [<option> [VALUE]]...
+ *
+ * in three steps: cmn_cli_parse() reads the arguments, cmn_cli_load() loads the case and applies
+ * the --set overrides in order, and, once the application has read the case (filling in its
+ * defaults), cmn_cli_write_used() creates the run directory and writes DIR/used_case.yaml.
+ * Options may come in any order; a repeated option keeps its last value. Bad input is reported
+ * through cmn_input_error() (exit CMN_EXIT_INPUT), so these calls return only on success.
+ * ------------------------------------------------------------------------------------------- */
+
+/** An option of one program beyond --set and --output. */
+struct cmn_cli_option {
+  const char *name;   /**< with its dashes, e.g. "--threads" */
+  const char **value; /**< receives the argument after the option, or `name` itself for a flag;
+                           left alone when the option is absent */
+  int flag;           /**< 0: takes one argument ("--threads N"); 1: takes none ("--quiet") */
+};
+
+/** A parsed command line. */
+struct cmn_cli {
+  const char *command;   /**< prefix of the messages ("run"), or NULL for none */
+  const char *case_path; /**< the one positional argument (a pointer into argv) */
+  const char *output;    /**< --output, or the program's default (pointer into argv or default) */
+  int nsets;             /**< number of --set assignments */
+  const char **sets;     /**< the --set assignments in order: array owned (freed by cmn_cli_load),
+                              strings in argv */
+};
+
+/**
+ * Parse argv[1 .. argc) (argv[0] is the program or command name and is skipped): one case file,
+ * --set (repeatable), --output and the `noptions` options of `options` (NULL when none). Messages
+ * start with "<command>: " when command != NULL. Returns 1 if --help or -h was given (then `usage`
+ * is printed on stdout and nothing is left to free), else 0 with *cli filled in.
+ * Errors (exit CMN_EXIT_INPUT, message on stderr, "[<command>: ]" first):
+ *   "--set: missing value (see --help)"               an option that takes a value ends argv;
+ *   "unknown option '--x' (see --help)"               any other argument starting with '-';
+ *   "one case file only ('a.yaml' and 'b.yaml')"      a second positional argument;
+ *   "missing case file (see --help)"                  none.
+ */
+int cmn_cli_parse(struct cmn_cli *cli, int argc, char **argv, const char *command,
+                  const char *usage, const char *default_output,
+                  const struct cmn_cli_option *options, int noptions);
+/**
+ * Load cli->case_path and apply the --set assignments in order; frees cli->sets (nsets becomes
+ * 0). Returns the case in fatal mode, owned by the caller (cmn_case_free()). Errors (exit
+ * CMN_EXIT_INPUT): the message of cmn_case_load() (file missing, unreadable, not YAML, root not a
+ * mapping) or of cmn_case_set() (e.g. "case.yaml: --set 'a': expected key=value").
+ */
+struct cmn_case *cmn_cli_load(struct cmn_cli *cli);
+/**
+ * Create the run directory `dir` (mkdir -p) and write the case, as used so far, into
+ * dir/used_case.yaml. Errors (exit CMN_EXIT_INPUT): "cannot create the output directory 'dir'",
+ * "cannot write 'dir/used_case.yaml'".
+ */
+void cmn_cli_write_used(const struct cmn_case *c, const char *dir);
 
 /* ---------------------------------------------------------------------------------------------
  * CSV output

@@ -223,34 +223,19 @@ int sph_cmd_gamma(int argc, char **argv) {
 /* sabre-sph mesh                                                                              */
 /* ------------------------------------------------------------------------------------------ */
 
+static const char mesh_usage[] =
+    "usage: sabre-sph mesh CASE.yaml --output DIR [--set key=value]...\n"
+    "Mesh the walls and fill the fluid of the case's geometry section, compute gamma, and write\n"
+    "DIR/mesh.pvd (fluid and boundary VTU files) and DIR/used_case.yaml.\n"
+    "See docs/sph-geometry.md, section 6.2.\n";
+
 int sph_cmd_mesh(int argc, char **argv) {
-  const char *case_path = NULL, *outdir = NULL;
-  const char **sets = cmn_malloc((size_t)argc * sizeof *sets);
-  int nsets = 0;
-  for (int i = 1; i < argc; i++) {
-    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      sph_cmd_usage(stdout);
-      free(sets);
-      return 0;
-    }
-    if (strcmp(argv[i], "--output") == 0) {
-      outdir = need_value(argc, argv, i++);
-    } else if (strcmp(argv[i], "--set") == 0) {
-      sets[nsets++] = need_value(argc, argv, i++);
-    } else if (argv[i][0] == '-') {
-      cmn_input_error("mesh: unknown option '%s' (see sabre-sph --help)", argv[i]);
-    } else if (case_path) {
-      cmn_input_error("mesh: one case file only ('%s' and '%s')", case_path, argv[i]);
-    } else {
-      case_path = argv[i];
-    }
-  }
-  if (!case_path || !outdir) cmn_input_error("usage: sabre-sph mesh CASE.yaml --output DIR");
-  char err[2048];
-  struct cmn_case *c = cmn_case_load(case_path, err, sizeof err);
-  if (!c) cmn_input_error("%s", err);
-  for (int i = 0; i < nsets; i++) cmn_case_set(c, sets[i]);
-  free(sets);
+  struct cmn_cli cli;
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], mesh_usage, NULL, NULL, 0)) return 0;
+  /* No default run directory: mesh output is asked for, not a by-product. */
+  if (cli.output == NULL) cmn_input_error("%s: --output DIR is required (see --help)", argv[0]);
+  const char *outdir = cli.output;
+  struct cmn_case *c = cmn_cli_load(&cli);
 
   struct sph_geometry g;
   sph_geometry_read(&g, c);
@@ -259,6 +244,7 @@ int sph_cmd_mesh(int argc, char **argv) {
     sph_config_read(&cfg, c, g.dim);
   }
   cmn_case_check_unused(c);
+  cmn_cli_write_used(c, outdir);
   struct sph_system s;
   sph_system_from_geometry(&s, &g);
   struct sph_kernel kern;
@@ -269,11 +255,6 @@ int sph_cmd_mesh(int argc, char **argv) {
   if (sph_output_open(&out, outdir, "mesh") || sph_output_write(&out, &s, 0.0))
     cmn_error("cannot write VTU output in '%s'", outdir);
   sph_output_close(&out);
-  size_t len = strlen(outdir) + 32;
-  char *used = cmn_malloc(len);
-  snprintf(used, len, "%s/used_case.yaml", outdir);
-  if (cmn_case_write_file(c, used)) cmn_error("cannot write '%s'", used);
-  free(used);
 
   double gmin[2] = {INFINITY, INFINITY}, gmax[2] = {-INFINITY, -INFINITY};
   for (int kind = 0; kind < 2; kind++)

@@ -251,6 +251,19 @@ static void test_mesh_command(void **state) {
   const char *typo[] = {"mesh", case_path, "--output", dir, "--set", "geometry.dx=1", NULL};
   assert_int_equal(run(sph_cmd_mesh, typo), CMN_EXIT_INPUT);
   assert_non_null(strstr(out, "unknown key 'geometry.dx'"));
+  /* Command-line errors come from common/'s cli layer, as for `run`: exit 2 naming the option. */
+  const char *bad_set[] = {"mesh", case_path, "--output", dir, "--set", "bad", NULL};
+  assert_int_equal(run(sph_cmd_mesh, bad_set), CMN_EXIT_INPUT);
+  assert_non_null(strstr(out, "--set 'bad': expected key=value"));
+  const char *no_value[] = {"mesh", case_path, "--output", dir, "--set", NULL};
+  assert_int_equal(run(sph_cmd_mesh, no_value), CMN_EXIT_INPUT);
+  assert_non_null(strstr(out, "mesh: --set: missing value"));
+  const char *no_output[] = {"mesh", case_path, "--set", "geometry.dr=0.05", NULL};
+  assert_int_equal(run(sph_cmd_mesh, no_output), CMN_EXIT_INPUT);
+  assert_non_null(strstr(out, "mesh: --output DIR is required"));
+  const char *unknown[] = {"mesh", case_path, "--output", dir, "--frobnicate", NULL};
+  assert_int_equal(run(sph_cmd_mesh, unknown), CMN_EXIT_INPUT);
+  assert_non_null(strstr(out, "mesh: unknown option '--frobnicate'"));
 }
 
 int main(void) {

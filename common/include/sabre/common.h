@@ -159,7 +159,7 @@ int cmn_case_write(const struct cmn_case *c, FILE *out);
 int cmn_case_write_file(const struct cmn_case *c, const char *path);
 
 /* ---------------------------------------------------------------------------------------------
- * Command lines of the case-file programs (sabre-fv1d, sabre-sph run|scalar):
+ * Command lines of the case-file programs (sabre-fv1d, sabre-sph run|scalar|mesh):
  *
  *   <program> CASE.yaml [--set key=value]... [--output DIR] [<option> [VALUE]]...
  *

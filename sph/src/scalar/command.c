@@ -393,10 +393,10 @@ static void profiles_write(struct cmn_csv *csv, const struct sph_scalar *s,
 
 int sph_cmd_scalar(int argc, char **argv) {
   gsl_set_error_handler_off(); /* GSL failures come back as statuses (sabre/sph_robin.h) */
-  struct sph_cli cli;
-  if (sph_cli_parse(&cli, argc, argv, usage, "scalar-output", NULL, 0)) return 0;
+  struct cmn_cli cli;
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "scalar-output", NULL, 0)) return 0;
   const char *case_path = cli.case_path, *output = cli.output;
-  struct cmn_case *c = sph_cli_load(&cli);
+  struct cmn_case *c = cmn_cli_load(&cli);
   struct sph_geometry g;
   sph_geometry_read(&g, c);
   struct scalar_case cs;
@@ -458,7 +458,7 @@ int sph_cmd_scalar(int argc, char **argv) {
   cmn_message("spectral radius of Lap %.6g 1/m^2: dt limit %.6g s, dt = %.6g s (%.3g of it)",
               radius, limit, dt, dt / limit);
 
-  sph_cli_write_used(c, output);
+  cmn_cli_write_used(c, output);
   write_vertices(output, s);
   struct series sr;
   series_open(&sr, output, s, ref.type != REF_NONE);

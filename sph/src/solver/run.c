@@ -204,9 +204,10 @@ static void segment_sources(const struct sph_geometry *g, struct cmn_case *c, in
 
 int sph_cmd_run(int argc, char **argv) {
   const char *restart = NULL, *threads_arg = NULL;
-  const struct sph_cli_option extra[] = {{"--restart", &restart}, {"--threads", &threads_arg}};
-  struct sph_cli cli;
-  if (sph_cli_parse(&cli, argc, argv, usage, "sph-output", extra, 2)) return 0;
+  const struct cmn_cli_option options[] = {{"--restart", &restart, 0},
+                                           {"--threads", &threads_arg, 0}};
+  struct cmn_cli cli;
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-output", options, 2)) return 0;
   const char *case_path = cli.case_path, *output = cli.output;
   long threads = 0;
   if (threads_arg && cmn_parse_long(threads_arg, 1, 4096, &threads) != 0)
@@ -219,13 +220,13 @@ int sph_cmd_run(int argc, char **argv) {
 #endif
 
   char err[2048];
-  struct cmn_case *c = sph_cli_load(&cli);
+  struct cmn_case *c = cmn_cli_load(&cli);
   struct sph_geometry g;
   sph_geometry_read(&g, c);
   struct sph_config cfg;
   sph_config_read(&cfg, c, g.dim);
   cmn_case_check_unused(c);
-  sph_cli_write_used(c, output);
+  cmn_cli_write_used(c, output);
 
   struct sph_system s;
   sph_system_from_geometry(&s, &g);

@@ -10,8 +10,9 @@
  * which is again closed form: a polynomial for even k, and for odd k
  *   E_1 = d Δasinh(s/c) + |δ̂| (ΔA − Δθ),  E_k = d ΔL_{k−2} + δ̂² E_{k−2},
  * where Δθ is the angle swept along the edge, ΔA = Δatan(|δ̂| s/(d q)) (their difference is the
- * solid angle of the sub-triangle) and L_k = ∫ q^k ds as in 2D. The parts of an edge outside the
- * support disc contribute the constant radial integral up to R times their angle.
+ * solid angle of the sub-triangle, taken with one atan2 by the half-angle formula of Van Oosterom &
+ * Strackee) and L_k = ∫ q^k ds as in 2D. The parts of an edge outside the support disc contribute
+ * the constant radial integral up to R times their angle.
  */
 #include <math.h>
 
@@ -101,74 +102,80 @@ static void piece_outside(const struct tri_consts *t, double d, double sa, doubl
   *ig += t->out_g * dtheta;
 }
 
-struct edge_terms {
-  double v0, v1, v2;      /* ∫ (d² + s²)^j ds, j = 0, 1, 2 */
-  double lm1, l1, l3, l5; /* ∫ q^k ds, k = −1, 1, 3, 5 */
-  double q;
-};
-
-static void edge_antiderivatives(double d2, double c, double c2, double s, struct edge_terms *r) {
-  const double s2 = s * s, s3 = s2 * s;
-  const double q = sqrt(c2 + s2), q2 = q * q;
-  r->q = q;
-  r->v0 = s;
-  r->v1 = d2 * s + s3 / 3.0;
-  r->v2 = d2 * d2 * s + 2.0 / 3.0 * d2 * s3 + s3 * s2 / 5.0;
-  r->lm1 = asinh(s / c);
-  r->l1 = 0.5 * (s * q + c2 * r->lm1);
-  r->l3 = 0.25 * (s * q2 * q + 3.0 * c2 * r->l1);
-  r->l5 = (s * q2 * q2 * q + 5.0 * c2 * r->l3) / 6.0;
-}
-
-/* Edge piece inside the support disc, abscissae sa < sb. */
+/* Edge piece inside the support disc, abscissae sa < sb. The radial integrals are the sums
+ * E_k above; Δ of the endpoint antiderivatives are formed so that they do not cancel. */
 static void piece_inside(const struct tri_consts *t, double d, double sa, double sb, double *iw,
                          double *ig) {
-  const double d2 = d * d, c2 = t->D + d2, c = sqrt(c2), D = t->D;
-  struct edge_terms ra, rb;
-  edge_antiderivatives(d2, c, c2, sa, &ra);
-  edge_antiderivatives(d2, c, c2, sb, &rb);
-  const double dtheta = atan2(d * (sb - sa), d2 + sa * sb);
-  const double dA = atan2(t->adh * d * (sb * ra.q - sa * rb.q), d2 * ra.q * rb.q + D * sa * sb);
-  const double v0 = rb.v0 - ra.v0, v1 = rb.v1 - ra.v1, v2 = rb.v2 - ra.v2;
+  const double d2 = d * d, c2 = t->D + d2, D = t->D;
+  const double sa2 = sa * sa, sb2 = sb * sb;
+  const double qa = sqrt(c2 + sa2), qb = sqrt(c2 + sb2);
+  /* q_a q_b + s_a s_b and s_b q_a − s_a q_b without cancellation: (q_a q_b)² − (s_a s_b)² =
+   * c²(c² + s_a² + s_b²) and (s_b q_a)² − (s_a q_b)² = c²(s_b² − s_a²). */
+  const double sab = sa * sb;
+  const double qq = sab >= 0.0 ? qa * qb + sab : c2 * (c2 + sa2 + sb2) / (qa * qb - sab);
+  const double cross =
+      sab <= 0.0 ? sb * qa - sa * qb : c2 * (sb - sa) * (sb + sa) / (sb * qa + sa * qb);
+  /* Δasinh(s/c) = asinh((s_b q_a − s_a q_b)/c²) */
+  const double dlm1 = asinh(cross / c2);
+  /* Solid angle of the sub-triangle (p, s_a, s_b) seen from a, Δθ − ΔA, by the half-angle
+   * formula of Van Oosterom & Strackee (1983): one atan2 instead of two. */
+  const double omega = 2.0 * atan2(d * (sb - sa), qq + c2 + t->adh * (qa + qb));
+  const double v0 = sb - sa;
+  const double v1 = d2 * v0 + (sb2 * sb - sa2 * sa) / 3.0;
+  const double v2 = d2 * d2 * v0 + 2.0 / 3.0 * d2 * (sb2 * sb - sa2 * sa) +
+                    (sb2 * sb2 * sb - sa2 * sa2 * sa) / 5.0;
+  const double qa2 = qa * qa, qb2 = qb * qb;
+  const double l1 = 0.5 * (sb * qb - sa * qa + c2 * dlm1);
+  const double l3 = 0.25 * (sb * qb2 * qb - sa * qa2 * qa + 3.0 * c2 * l1);
+  const double l5 = (sb * qb2 * qb2 * qb - sa * qa2 * qa2 * qa + 5.0 * c2 * l3) / 6.0;
   const double e2 = d * v0;
   const double e4 = d * (2.0 * D * v0 + v1);
   const double e6 = d * (3.0 * D * D * v0 + 3.0 * D * v1 + v2);
-  const double e1 = d * (rb.lm1 - ra.lm1) + t->adh * (dA - dtheta);
-  const double e3 = d * (rb.l1 - ra.l1) + D * e1;
-  const double e5 = d * (rb.l3 - ra.l3) + D * e3;
-  const double e7 = d * (rb.l5 - ra.l5) + D * e5;
+  const double e1 = d * dlm1 - t->adh * omega;
+  const double e3 = d * l1 + D * e1;
+  const double e5 = d * l3 + D * e3;
+  const double e7 = d * l5 + D * e5;
   *iw += 0.5 * e2 - 0.625 * e4 + 0.5 * e5 - 5.0 / 32.0 * e6 + e7 / 56.0;
   *ig += -t->dh * (e2 / 6.0 - 0.125 * e4 + e5 / 12.0 - 5.0 / 224.0 * e6 + e7 / 448.0) +
-         4.0 / 21.0 * t->sgn * (dtheta - dA);
+         4.0 / 21.0 * t->sgn * omega;
 }
 
-/* Sub-triangle (p, A, B), A and B in units of h relative to the foot point p. Adds the angle swept
- * to *theta and returns whether part of the edge lies inside the support disc. */
-static int edge_integrals(const struct tri_consts *t, const double *A, const double *B, double *iw,
-                          double *ig, double *theta) {
+/* Edge A → B (units of h, relative to the foot point p): abscissae of its ends and of the chord
+ * through the support disc, signed distance d from p to its line. */
+struct edge_geom {
+  double d, sA, sB, S; /* S: half chord (0 if the line misses the disc) */
+  int in;              /* part of the edge inside the disc */
+};
+
+static void edge_geometry(const struct tri_consts *t, const double *A, const double *B,
+                          struct edge_geom *g) {
   double ex = B[0] - A[0], ey = B[1] - A[1];
-  const double len = hypot(ex, ey);
+  const double len = sqrt(ex * ex + ey * ey);
   ex /= len;
   ey /= len;
-  const double sA = A[0] * ex + A[1] * ey, sB = B[0] * ex + B[1] * ey;
+  g->sA = A[0] * ex + A[1] * ey;
+  g->sB = B[0] * ex + B[1] * ey;
   /* cross(X, e) for X on the edge: dθ/ds = d/(d² + s²); from the endpoint nearer to p */
-  const double d = (A[0] * A[0] + A[1] * A[1] < B[0] * B[0] + B[1] * B[1]) ? A[0] * ey - A[1] * ex
-                                                                           : B[0] * ey - B[1] * ex;
-  const double S2 = t->R2 - d * d;
-  /* p on the edge's line: the sub-triangle has no area (|d| ≥ 1e-150 keeps asinh(s/c) finite),
-   * but the edge may still cross the disc. */
-  if (fabs(d) < 1e-150) return S2 > 0.0 && sA < sqrt(S2) && sB > -sqrt(S2);
-  *theta += atan2(d * (sB - sA), d * d + sA * sB);
-  if (S2 <= 0.0) {
+  g->d = (A[0] * A[0] + A[1] * A[1] < B[0] * B[0] + B[1] * B[1]) ? A[0] * ey - A[1] * ex
+                                                                 : B[0] * ey - B[1] * ex;
+  const double S2 = t->R2 - g->d * g->d;
+  g->S = S2 > 0.0 ? sqrt(S2) : 0.0;
+  g->in = S2 > 0.0 && g->sA < g->S && g->sB > -g->S;
+}
+
+/* Sub-triangle (p, A, B) of an edge that enters the disc (|d| ≥ 1e-150 keeps asinh(s/c) finite;
+ * for p on the edge's line the sub-triangle has no area). */
+static void edge_integrals(const struct tri_consts *t, const struct edge_geom *g, double *iw,
+                           double *ig) {
+  const double d = g->d, sA = g->sA, sB = g->sB, S = g->S;
+  if (fabs(d) < 1e-150) return;
+  if (!g->in) {
     piece_outside(t, d, sA, sB, iw, ig);
-    return 0;
+    return;
   }
-  const double S = sqrt(S2);
-  const double lo = fmax(sA, -S), hi = fmin(sB, S);
-  if (lo < hi) piece_inside(t, d, lo, hi, iw, ig);
+  piece_inside(t, d, fmax(sA, -S), fmin(sB, S), iw, ig);
   if (sA < -S) piece_outside(t, d, sA, fmin(sB, -S), iw, ig);
   if (sB > S) piece_outside(t, d, fmax(sA, S), sB, iw, ig);
-  return lo < hi;
 }
 
 /* Solid angle of the spherical triangle of unit vectors u, v, w (Van Oosterom & Strackee 1983). */
@@ -269,16 +276,29 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   }
   /* Cull on the bounding circle of the triangle before the edge integrals. */
   const double cx = (P[0][0] + P[1][0] + P[2][0]) / 3.0, cy = (P[0][1] + P[1][1] + P[2][1]) / 3.0;
-  double rad = 0.0;
-  for (int j = 0; j < 3; j++) rad = fmax(rad, hypot(P[j][0] - cx, P[j][1] - cy));
-  if (hypot(cx, cy) - rad >= sqrt(t.R2)) return; /* a is off s: not `on` either */
-  double iw = 0.0, ig = 0.0, theta = 0.0;
+  double rad2 = 0.0;
+  for (int j = 0; j < 3; j++) {
+    const double ux = P[j][0] - cx, uy = P[j][1] - cy;
+    rad2 = fmax(rad2, ux * ux + uy * uy);
+  }
+  const double reach = sqrt(t.R2) + sqrt(rad2);
+  if (cx * cx + cy * cy >= reach * reach) return; /* a is off s: not `on` either */
+  struct edge_geom g[3];
   int cut = 0;
-  for (int j = 0; j < 3; j++) cut |= edge_integrals(&t, P[j], P[(j + 1) % 3], &iw, &ig, &theta);
-  if (!cut) {
+  for (int j = 0; j < 3; j++) {
+    edge_geometry(&t, P[j], P[(j + 1) % 3], &g[j]);
+    cut |= g[j].in;
+  }
+  double iw = 0.0, ig = 0.0;
+  if (cut) {
+    for (int j = 0; j < 3; j++) edge_integrals(&t, &g[j], &iw, &ig);
+  } else {
     /* No edge enters the disc: the disc is outside the triangle (exactly 0, not round-off) or
-     * inside it (the whole disc). */
-    const double full = fabs(theta) > SPH_PI ? (theta > 0.0 ? 2.0 * SPH_PI : -2.0 * SPH_PI) : 0.0;
+     * inside it (the whole disc), where p is on the same side of every edge (d of one sign). */
+    const double full = (g[0].d >= 1e-150 && g[1].d >= 1e-150 && g[2].d >= 1e-150) ? 2.0 * SPH_PI
+                        : (g[0].d <= -1e-150 && g[1].d <= -1e-150 && g[2].d <= -1e-150)
+                            ? -2.0 * SPH_PI
+                            : 0.0;
     iw = t.out_w * full;
     ig = t.out_g * full;
   }

@@ -109,14 +109,20 @@ static void piece_inside(const struct tri_consts *t, double d, double sa, double
   const double d2 = d * d, c2 = t->D + d2, D = t->D;
   const double sa2 = sa * sa, sb2 = sb * sb;
   const double qa = sqrt(c2 + sa2), qb = sqrt(c2 + sb2);
-  /* q_a q_b + s_a s_b and s_b q_a − s_a q_b without cancellation: (q_a q_b)² − (s_a s_b)² =
-   * c²(c² + s_a² + s_b²) and (s_b q_a)² − (s_a q_b)² = c²(s_b² − s_a²). */
-  const double sab = sa * sb;
+  /* q_a q_b + s_a s_b without cancellation: (q_a q_b)² − (s_a s_b)² = c²(c² + s_a² + s_b²) */
+  const double sab = sa * sb, ds = sb - sa;
   const double qq = sab >= 0.0 ? qa * qb + sab : c2 * (c2 + sa2 + sb2) / (qa * qb - sab);
-  const double cross =
-      sab <= 0.0 ? sb * qa - sa * qb : c2 * (sb - sa) * (sb + sa) / (sb * qa + sa * qb);
-  /* Δasinh(s/c) = asinh((s_b q_a − s_a q_b)/c²) */
-  const double dlm1 = asinh(cross / c2);
+  /* ΔL_{−1} = Δasinh(s/c) = log1p(u), u = (s_b + q_b)/(s_a + q_a) − 1 (= (q_a − s_a)/(q_b − s_b) −
+   * 1) formed without cancellation, with q_b − q_a = (s_b² − s_a²)/(q_a + q_b) and, for s_a < 0 <
+   * s_b, q_a q_b − s_a s_b − c² = c² (s_b − s_a)²/(q_a q_b + s_a s_b + c²). */
+  double u;
+  if (sa >= 0.0)
+    u = ds * (1.0 + (sa + sb) / (qa + qb)) / (sa + qa);
+  else if (sb <= 0.0)
+    u = ds * (1.0 - (sa + sb) / (qa + qb)) / (qb - sb);
+  else
+    u = (sb * qa - sa * qb + c2 * ds * ds / (qq + c2)) / c2;
+  const double dlm1 = log1p(u);
   /* Solid angle of the sub-triangle (p, s_a, s_b) seen from a, Δθ − ΔA, by the half-angle
    * formula of Van Oosterom & Strackee (1983): one atan2 instead of two. */
   const double omega = 2.0 * atan2(d * (sb - sa), qq + c2 + t->adh * (qa + qb));

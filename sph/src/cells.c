@@ -171,6 +171,15 @@ void sph_segment_vertices(const struct sph_system *s, size_t j, const double *ne
                           double v[3][3]) {
   const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_parts *vert = &s->part[SPH_KIND_VERTEX];
+  int periodic = 0;
+  for (int k = 0; k < s->domain.dim; k++) periodic |= s->domain.periodic[k];
+  if (!periodic) { /* every image_shift() below would be 0: the same bits (+ 0.0) without them */
+    for (int k = 0; k < 3; k++) {
+      const size_t iv = k < s->dim ? seg->vertex[k][j] : 0;
+      for (int a = 0; a < 3; a++) v[k][a] = k < s->dim ? vert->x[a][iv] + 0.0 : 0;
+    }
+    return;
+  }
   double c[3] = {seg->x[0][j], seg->x[1][j], seg->x[2][j]}, sc[3], sv[3];
   image_shift(&s->domain, near, c, sc);
   for (int k = 0; k < 3; k++) {

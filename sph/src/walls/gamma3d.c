@@ -117,23 +117,24 @@ static void piece_inside(const struct tri_consts *t, double d, double sa, double
    * s_b, q_a q_b − s_a s_b − c² = c² (s_b − s_a)²/(q_a q_b + s_a s_b + c²). */
   double u;
   if (sa >= 0.0)
-    u = ds * (1.0 + (sa + sb) / (qa + qb)) / (sa + qa);
+    u = ds * (qa + qb + sa + sb) / ((qa + qb) * (sa + qa));
   else if (sb <= 0.0)
-    u = ds * (1.0 - (sa + sb) / (qa + qb)) / (qb - sb);
+    u = ds * (qa + qb - sa - sb) / ((qa + qb) * (qb - sb));
   else
-    u = (sb * qa - sa * qb + c2 * ds * ds / (qq + c2)) / c2;
+    u = ((sb * qa - sa * qb) * (qq + c2) + c2 * ds * ds) / (c2 * (qq + c2));
   const double dlm1 = log1p(u);
   /* Solid angle of the sub-triangle (p, s_a, s_b) seen from a, Δθ − ΔA, by the half-angle
    * formula of Van Oosterom & Strackee (1983): one atan2 instead of two. */
   const double omega = 2.0 * atan2(d * (sb - sa), qq + c2 + t->adh * (qa + qb));
   const double v0 = sb - sa;
-  const double v1 = d2 * v0 + (sb2 * sb - sa2 * sa) / 3.0;
+  /* divisions by constants as products with their reciprocals (division is the slow part here) */
+  const double v1 = d2 * v0 + (sb2 * sb - sa2 * sa) * (1.0 / 3.0);
   const double v2 = d2 * d2 * v0 + 2.0 / 3.0 * d2 * (sb2 * sb - sa2 * sa) +
-                    (sb2 * sb2 * sb - sa2 * sa2 * sa) / 5.0;
+                    (sb2 * sb2 * sb - sa2 * sa2 * sa) * 0.2;
   const double qa2 = qa * qa, qb2 = qb * qb;
   const double l1 = 0.5 * (sb * qb - sa * qa + c2 * dlm1);
   const double l3 = 0.25 * (sb * qb2 * qb - sa * qa2 * qa + 3.0 * c2 * l1);
-  const double l5 = (sb * qb2 * qb2 * qb - sa * qa2 * qa2 * qa + 5.0 * c2 * l3) / 6.0;
+  const double l5 = (sb * qb2 * qb2 * qb - sa * qa2 * qa2 * qa + 5.0 * c2 * l3) * (1.0 / 6.0);
   const double e2 = d * v0;
   const double e4 = d * (2.0 * D * v0 + v1);
   const double e6 = d * (3.0 * D * D * v0 + 3.0 * D * v1 + v2);
@@ -141,8 +142,9 @@ static void piece_inside(const struct tri_consts *t, double d, double sa, double
   const double e3 = d * l1 + D * e1;
   const double e5 = d * l3 + D * e3;
   const double e7 = d * l5 + D * e5;
-  *iw += 0.5 * e2 - 0.625 * e4 + 0.5 * e5 - 5.0 / 32.0 * e6 + e7 / 56.0;
-  *ig += -t->dh * (e2 / 6.0 - 0.125 * e4 + e5 / 12.0 - 5.0 / 224.0 * e6 + e7 / 448.0) +
+  *iw += 0.5 * e2 - 0.625 * e4 + 0.5 * e5 - 5.0 / 32.0 * e6 + (1.0 / 56.0) * e7;
+  *ig += -t->dh * ((1.0 / 6.0) * e2 - 0.125 * e4 + (1.0 / 12.0) * e5 - 5.0 / 224.0 * e6 +
+                   (1.0 / 448.0) * e7) +
          4.0 / 21.0 * t->sgn * omega;
 }
 

@@ -264,13 +264,23 @@ static int is_neighbour(const struct sph_system *s, enum sph_kind query, enum sp
   if (query != SPH_KIND_SEGMENT && other != SPH_KIND_SEGMENT) return r2 < radius * radius;
   double lim = radius + reach;
   if (r2 >= lim * lim) return 0;
+  const double *x = other == SPH_KIND_SEGMENT ? xa : xb;
+  const size_t e = other == SPH_KIND_SEGMENT ? j : i;
+  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
   double v[3][3], q[3];
-  if (other == SPH_KIND_SEGMENT) {
-    sph_segment_vertices(s, j, xa, v);
-    return sph_element_distance(s->dim, v, xa, q) < radius;
+  sph_segment_vertices(s, e, x, v);
+  /* Decided without the exact distance when a bound settles it with room to spare (1e-12, far
+   * above round-off), so the list is the one the exact test gives: the element is no farther than
+   * its first vertex and no nearer than its plane (line, point) of unit normal n. */
+  double dv[3], dn = 0.0;
+  for (int a = 0; a < 3; a++) {
+    dv[a] = x[a] - v[0][a];
+    dn += dv[a] * seg->normal[a][e];
   }
-  sph_segment_vertices(s, i, xb, v);
-  return sph_element_distance(s->dim, v, xb, q) < radius;
+  const double r2min = radius * radius;
+  if (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] < r2min * (1.0 - 1e-12)) return 1;
+  if (dn * dn > r2min * (1.0 + 1e-12)) return 0;
+  return sph_element_distance(s->dim, v, x, q) < radius;
 }
 
 static void check_kinds(enum sph_kind query, enum sph_kind other) {
@@ -367,7 +377,11 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   }
   nlist_alloc(nl, query, other, pq->n);
   const int points = query != SPH_KIND_SEGMENT && other != SPH_KIND_SEGMENT, same = query == other;
-  const double r2max = radius * radius;
+  const double r2max = radius * radius, lim2 = lim * lim;
+  /* Round-off in the cell binning, with a wide margin. */
+  double slack[3];
+  for (int a = 0; a < 3; a++)
+    slack[a] = 1e-9 * (fabs(c->domain.lo[a]) + fabs(c->domain.hi[a]) + c->width[a]);
   double period[3], half[3];
   for (int a = 0; a < 3; a++) {
     int per = a < s->dim && s->domain.periodic[a];
@@ -422,9 +436,26 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
       for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
         size_t i = idxq[qa], first = b->n;
         double xa[3] = {c->xs[query][0][qa], c->xs[query][1][qa], c->xs[query][2][qa]};
+        /* Squared gap from xa to each stencil slab along the non-periodic axes (0 along periodic
+         * ones): a cell whose box is lim + slack away holds no candidate that passes the tests
+         * below, so skipping it leaves the list unchanged. */
+        double gap2[3][2 * STENCIL_REACH_MAX + 1];
+        for (int a = 0; a < 3; a++)
+          for (int k = 0; k < nst[a]; k++) {
+            double g = 0.0;
+            if (a < c->dim && !c->domain.periodic[a]) {
+              const double lo = c->domain.lo[a] + c->width[a] * st[a][k];
+              g = st[a][k] > ic[a]   ? lo - xa[a] - slack[a]
+                  : st[a][k] < ic[a] ? xa[a] - (lo + c->width[a]) - slack[a]
+                                     : 0.0;
+              g = g > 0.0 ? g : 0.0;
+            }
+            gap2[a][k] = g * g;
+          }
         for (int s2 = 0; s2 < nst[2]; s2++)
           for (int s1 = 0; s1 < nst[1]; s1++)
             for (int s0 = 0; s0 < nst[0]; s0++) {
+              if (gap2[0][s0] + gap2[1][s1] + gap2[2][s2] >= lim2) continue;
               size_t cj = ((size_t)st[2][s2] * (size_t)c->ncell[1] + (size_t)st[1][s1]) *
                               (size_t)c->ncell[0] +
                           (size_t)st[0][s0];

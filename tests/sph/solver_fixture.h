@@ -5,11 +5,37 @@
 #define SABRE_TESTS_SPH_SOLVER_FIXTURE_H
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "geometry/geometry.h"
+#include "sabre/common.h"
 #include "sabre/sph.h"
 #include "sabre/sph_solver.h"
+#include "testutil.h"
+
+/* Parse base + extra as case.yaml and read the solver's sections in non-fatal mode; with extra
+ * "--set key=value" the override is applied to base instead. Returns sph_config_read()'s rc (or
+ * the unused-key check's) and leaves the case's message in msg. */
+static inline int fixture_read_case(const char *base, const char *extra, struct sph_config *cfg,
+                                    char *msg, size_t len) {
+  const int is_set = strncmp(extra, "--set ", 6) == 0;
+  char text[4096];
+  snprintf(text, sizeof text, "%s%s", base, is_set ? "" : extra);
+  char err[512];
+  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
+  assert_non_null(c);
+  cmn_case_set_fatal(c, 0);
+  int rc = is_set ? cmn_case_set(c, extra + 6) : 0;
+  if (rc == 0) rc = sph_config_read(cfg, c, 2);
+  if (rc == 0) {
+    cmn_case_mark_used(c, "geometry");
+    rc = cmn_case_check_unused(c);
+  }
+  snprintf(msg, len, "%s", cmn_case_error(c));
+  cmn_case_free(c);
+  return rc;
+}
 
 /* The defaults of docs/sph-case-file.md (what sph_config_read() gives for a minimal case). */
 static inline void fixture_config(struct sph_config *cfg) {

@@ -7,6 +7,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
+#include "solver_fixture.h"
 #include "testutil.h"
 
 static const char base[] =
@@ -15,24 +16,8 @@ static const char base[] =
     "fluid: {rho0: 1000, c0: 20}\n"
     "time: {end: 2.5}\n";
 
-/* Parse base + extra, read the solver sections; returns the rc and leaves the message. */
 static int read_case(const char *extra, struct sph_config *cfg, char *msg, size_t len) {
-  char text[4096];
-  snprintf(text, sizeof text, "%s%s", base, strncmp(extra, "--set ", 6) ? extra : "");
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
-  assert_non_null(c);
-  cmn_case_set_fatal(c, 0);
-  int rc = 0;
-  if (strncmp(extra, "--set ", 6) == 0) rc = cmn_case_set(c, extra + 6);
-  if (rc == 0) rc = sph_config_read(cfg, c, 2);
-  if (rc == 0) {
-    cmn_case_mark_used(c, "geometry");
-    rc = cmn_case_check_unused(c);
-  }
-  snprintf(msg, len, "%s", cmn_case_error(c));
-  cmn_case_free(c);
-  return rc;
+  return fixture_read_case(base, extra, cfg, msg, len);
 }
 
 static void test_defaults(void **state) {

@@ -244,20 +244,7 @@ static const char base[] =
     "time: {end: 2.5}\n";
 
 static int read_case(const char *extra, struct sph_config *cfg, char *msg, size_t len) {
-  char text[4096];
-  snprintf(text, sizeof text, "%s%s", base, extra);
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
-  assert_non_null(c);
-  cmn_case_set_fatal(c, 0);
-  int rc = sph_config_read(cfg, c, 2);
-  if (rc == 0) {
-    cmn_case_mark_used(c, "geometry");
-    rc = cmn_case_check_unused(c);
-  }
-  snprintf(msg, len, "%s", cmn_case_error(c));
-  cmn_case_free(c);
-  return rc;
+  return fixture_read_case(base, extra, cfg, msg, len);
 }
 
 static void test_case_keys(void **state) {

@@ -3,6 +3,7 @@
 
 #include <fenv.h>
 #include <float.h>
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,6 +34,13 @@ void sabre_assert_abs(double x, double expected, double tol, const char *expr, c
 void sabre_fp_traps_on(void) {
   feclearexcept(FE_ALL_EXCEPT);
   feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
+}
+
+int sabre_setup_gsl_traps(void **state) {
+  (void)state;
+  gsl_set_error_handler_off();
+  sabre_fp_traps_on();
+  return 0;
 }
 
 void sabre_fp_traps_off(void) {

@@ -26,6 +26,8 @@ void sabre_assert_abs(double x, double expected, double tol, const char *expr, c
 void sabre_fp_traps_on(void);
 /** Turn the traps off (for tests that check NaN/inf handling on purpose). */
 void sabre_fp_traps_off(void);
+/** cmocka group setup: GSL's error handler off (callers check status codes) and the traps on. */
+int sabre_setup_gsl_traps(void **state);
 
 /** Deterministic generator (splitmix64) seeded explicitly. */
 struct sabre_rng {

@@ -318,13 +318,6 @@ static void test_tetrahedra(void **state) {
   gsl_integration_workspace_free(wi);
 }
 
-static int setup(void **state) {
-  (void)state;
-  gsl_set_error_handler_off();
-  sabre_fp_traps_on();
-  return 0;
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_sweep_segments),
@@ -332,5 +325,5 @@ int main(void) {
       cmocka_unit_test(test_polygons),
       cmocka_unit_test(test_tetrahedra),
   };
-  return cmocka_run_group_tests(tests, setup, NULL);
+  return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

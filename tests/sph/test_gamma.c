@@ -660,13 +660,6 @@ static void test_errors(void **state) {
   expect_error(&k1, a, 1, &p);
 }
 
-static int setup(void **state) {
-  (void)state;
-  gsl_set_error_handler_off();
-  sabre_fp_traps_on();
-  return 0;
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_far_field),
@@ -679,5 +672,5 @@ int main(void) {
       cmocka_unit_test(test_dynamic),
       cmocka_unit_test(test_errors),
   };
-  return cmocka_run_group_tests(tests, setup, NULL);
+  return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

@@ -6,7 +6,6 @@
  * force the controller does not know. It checks the controller algebra (fixed points, decay rate,
  * variable steps), not the SPH channel: there the internal force also carries pressure noise and
  * the measured ṽ the slice sampling error. */
-#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <string.h>
 
@@ -287,13 +286,6 @@ static void test_m62_variable_steps(void **state) {
   }
 }
 
-static int setup(void **state) {
-  (void)state;
-  gsl_set_error_handler_off();
-  sabre_fp_traps_on();
-  return 0;
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_poiseuille_2d),      cmocka_unit_test(test_duct_3d),
@@ -302,5 +294,5 @@ int main(void) {
       cmocka_unit_test(test_m63_converges),      cmocka_unit_test(test_m58_baseline),
       cmocka_unit_test(test_m62_variable_steps),
   };
-  return cmocka_run_group_tests(tests, setup, NULL);
+  return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

@@ -122,13 +122,6 @@ static void test_derivative(void **state) {
   }
 }
 
-static int setup(void **state) {
-  (void)state;
-  gsl_set_error_handler_off();
-  sabre_fp_traps_on();
-  return 0;
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_init_errors),
@@ -136,5 +129,5 @@ int main(void) {
       cmocka_unit_test(test_values),
       cmocka_unit_test(test_derivative),
   };
-  return cmocka_run_group_tests(tests, setup, NULL);
+  return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

@@ -3,7 +3,6 @@
  * random coefficients), m = 1 equals Shepard M(16–17), hydrostatic wall pressure including the
  * free-surface corner, and every status code. */
 #include <float.h>
-#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <string.h>
 
@@ -483,13 +482,6 @@ static void test_status_names(void **state) {
   assert_string_equal(sph_robin_status_name(99), "SPH_ROBIN_UNKNOWN");
 }
 
-static int setup(void **state) {
-  (void)state;
-  gsl_set_error_handler_off();
-  sabre_fp_traps_on();
-  return 0;
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_exact_polynomials), cmocka_unit_test(test_exact_polynomials_hydro),
@@ -498,5 +490,5 @@ int main(void) {
       cmocka_unit_test(test_singular),          cmocka_unit_test(test_bad_input),
       cmocka_unit_test(test_status_names),
   };
-  return cmocka_run_group_tests(tests, setup, NULL);
+  return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

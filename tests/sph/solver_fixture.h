@@ -14,6 +14,19 @@
 #include "sabre/sph_solver.h"
 #include "testutil.h"
 
+/* The system of a case given as YAML text (its geometry section; the case and geometry are freed).
+ */
+static inline void fixture_system_from_yaml(struct sph_system *s, const char *text) {
+  char err[512];
+  struct cmn_case *c = cmn_case_parse(text, "test.yaml", err, sizeof err);
+  if (c == NULL) fail_msg("%s", err);
+  struct sph_geometry g;
+  sph_geometry_read(&g, c);
+  sph_system_from_geometry(s, &g);
+  sph_geometry_free(&g);
+  cmn_case_free(c);
+}
+
 /* Parse base + extra as case.yaml and read the solver's sections in non-fatal mode; with extra
  * "--set key=value" the override is applied to base instead. Returns sph_config_read()'s rc (or
  * the unused-key check's) and leaves the case's message in msg. */

@@ -17,6 +17,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph_scalar.h"
+#include "solver_fixture.h"
 #include "testutil.h"
 
 /* [0, 1] with walls at both ends, fluid at lo + (i + 1/2) Δr in [off Δr, 1 − off Δr]. */
@@ -27,14 +28,7 @@ static void make_1d(struct sph_system *s, double dr, double h_over_dr, double of
            "  walls:\n    - {type: interval, lo: [0], hi: [1]}\n"
            "  fluid:\n    - {type: box, lo: [%.17g], hi: [%.17g]}\n",
            dr, h_over_dr, off * dr, 1.0 - off * dr);
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "test.yaml", err, sizeof err);
-  assert_non_null(c);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  sph_system_from_geometry(s, &g);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
+  fixture_system_from_yaml(s, text);
 }
 
 static void setup_1d(struct sph_scalar *sc, double dr, double h_over_dr, double off,

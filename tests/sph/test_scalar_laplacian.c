@@ -20,6 +20,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph_scalar.h"
+#include "solver_fixture.h"
 #include "testutil.h"
 
 #define H 0.02
@@ -33,14 +34,7 @@ static void make_1d(struct sph_system *s, double dr, double off) {
            "  walls:\n    - {type: interval, lo: [0], hi: [1]}\n"
            "  fluid:\n    - {type: box, lo: [%.17g], hi: [%.17g]}\n",
            dr, H / dr, off * dr, 1.0 - off * dr);
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "test.yaml", err, sizeof err);
-  assert_non_null(c);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  sph_system_from_geometry(s, &g);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
+  fixture_system_from_yaml(s, text);
 }
 
 /* Two groups: segment 0 (x = 0) and segment 1 (x = 1), Neumann-type (μ1, 1, μ3) of order m. */

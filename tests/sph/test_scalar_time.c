@@ -21,6 +21,7 @@
 
 #include "sabre/common.h"
 #include "sabre/sph_scalar.h"
+#include "solver_fixture.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
@@ -49,15 +50,8 @@ static void setup_walls(struct sph_scalar *sc, double dr, const struct sph_scala
            "  walls:\n    - {type: interval, lo: [0], hi: [1]}\n"
            "  fluid:\n    - {type: box, lo: [%.17g], hi: [%.17g]}\n",
            dr, 0.5 * dr, 1.0 - 0.5 * dr);
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "test.yaml", err, sizeof err);
-  assert_non_null(c);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
   struct sph_system s;
-  sph_system_from_geometry(&s, &g);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
+  fixture_system_from_yaml(&s, text);
   const int seg_bc[2] = {0, 0};
   sph_scalar_init(sc, &s, 1.0, -1.0, 1, bc, seg_bc);
   sph_system_free(&s);

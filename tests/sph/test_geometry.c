@@ -243,6 +243,33 @@ static void test_channel_periodic(void **state) {
   sph_geometry_free(&g);
 }
 
+/* 3D channel periodic in x and y: an infinite layer, floor and lid only (no y faces), closed
+ * across both seams; every seam vertex exists once and every triangle has area dr²/2. */
+static void test_layer_periodic_xy(void **state) {
+  (void)state;
+  struct sph_geometry g;
+  struct sph_system s;
+  build(
+      "geometry:\n  dimension: 3\n  dr: 0.1\n  periodic: [x, y]\n  walls:\n"
+      "    - {type: channel, lo: [0, 0, 0], hi: [1, 0.7, 0.4]}\n"
+      "  fluid:\n    - {type: box, lo: [0, 0, 0], hi: [1, 0.7, 0.4]}\n",
+      &g, &s);
+  const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
+  assert_int_equal(sg->n, 2 * 2 * 10 * 7);
+  assert_int_equal(s.part[SPH_KIND_VERTEX].n, 2 * 10 * 7);
+  assert_int_equal(s.part[SPH_KIND_FLUID].n, 10 * 7 * 4);
+  assert_true(s.domain.periodic[0] && s.domain.periodic[1] && !s.domain.periodic[2]);
+  size_t up = 0;
+  for (size_t j = 0; j < sg->n; j++) {
+    assert_rel(sg->measure[j], 0.005, 1e-12);
+    assert_rel(fabs(sg->normal[2][j]), 1, 1e-12); /* floor (+z) or lid (−z): no side walls */
+    up += sg->normal[2][j] > 0;
+  }
+  assert_int_equal(up, sg->n / 2);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+}
+
 static void test_interval_1d(void **state) {
   (void)state;
   struct sph_geometry g;
@@ -408,9 +435,10 @@ int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_box_2d),           cmocka_unit_test(test_fill_2d_polygons),
-      cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_step_wedge),
-      cmocka_unit_test(test_fill_far_regions), cmocka_unit_test(test_fill_midway),
-      cmocka_unit_test(test_interval_1d),      cmocka_unit_test(test_fill_3d_stl),
-      cmocka_unit_test(test_fill_3d_stl_tank), cmocka_unit_test(test_fill_first_row)};
+      cmocka_unit_test(test_channel_periodic), cmocka_unit_test(test_layer_periodic_xy),
+      cmocka_unit_test(test_step_wedge),       cmocka_unit_test(test_fill_far_regions),
+      cmocka_unit_test(test_fill_midway),      cmocka_unit_test(test_interval_1d),
+      cmocka_unit_test(test_fill_3d_stl),      cmocka_unit_test(test_fill_3d_stl_tank),
+      cmocka_unit_test(test_fill_first_row)};
   return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

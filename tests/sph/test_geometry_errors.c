@@ -62,6 +62,10 @@ static void test_case_errors(void **state) {
          "wall type 'stl' does not exist in 2D");
   expect(HEAD2 "  walls:\n    - {type: channel, lo: [0, 0], hi: [1, 1]}\n",
          "add x to geometry.periodic");
+  expect(HEAD3
+         "  periodic: [x, y]\n  walls:\n"
+         "    - {type: channel, lo: [0, 0, 0], hi: [1, 1, 1], open: [y-]}\n",
+         "geometry.walls[0].open[0]: no such face for this wall type in 3D");
   expect(HEAD2 "  walls:\n    - {type: box, lo: [0, 0], hi: [1, 1], open: [z+]}\n",
          "geometry.walls[0].open[0]: no such face");
   expect(HEAD2 "  walls:\n    - {type: polygon, closed: false, points: [[0, 0], [1, 0], [1, 1]]}\n",

@@ -104,12 +104,15 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
     }
     case W_CHANNEL: {
       get_box(c, entry, dim, lo, hi);
-      unsigned open = get_faces(c, entry, dim, 0x3Cu);
       if (!periodic[0])
         cmn_case_fail(c, key(p, sizeof p, entry, "type"),
                       "a channel has no walls at its x ends: add x to geometry.periodic, or use a "
                       "box with open: [x-, x+]");
-      sph_mesh_box(m, lo, hi, dr, open, 3u, sph_mesh_add_source(m, src));
+      /* In 3D a channel periodic in y as well has no walls at its y ends either: the floor and
+       * lid of an infinite layer. */
+      const unsigned skip = dim == 3 && periodic[1] ? 0xFu : 0x3u;
+      unsigned open = get_faces(c, entry, dim, 0x3Fu & ~skip);
+      sph_mesh_box(m, lo, hi, dr, open, skip, sph_mesh_add_source(m, src));
       break;
     }
     case W_STEP: {

@@ -1,7 +1,7 @@
 /* Built-in wall generators: 2D polygons and polylines, and axis-aligned boxes in any dimension
- * (the 1D interval is the 1D box; channels are boxes without their x faces). Elements come out
- * coarse in 2D (one per polygon edge, split later by sph_mesh_refine) and at spacing ≈ Δr on 3D
- * box faces. */
+ * (the 1D interval is the 1D box; channels are boxes without their x faces, and in 3D periodic in
+ * y also without their y faces). Elements come out coarse in 2D (one per polygon edge, split later
+ * by sph_mesh_refine) and at spacing ≈ Δr on 3D box faces. */
 #include <math.h>
 
 #include "geometry/geometry.h"

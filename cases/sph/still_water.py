@@ -1,6 +1,6 @@
-"""Analysis shared by the still-water plot scripts (cases/sph/still_water_2d, still_water_3d):
-a tank of depth H at rest under gravity, run as committed (corrected/) and without the gravity
-correction of the volume diffusion (uncorrected/, a shorter run). Imported like sabre_output.py
+"""Analysis shared by the still-water plot scripts (cases/sph/still_water_2d, still_water_3d,
+still_water_tank_3d): a tank of depth H at rest under gravity, run as committed (corrected/) and
+without the gravity correction of the volume diffusion (uncorrected/, a shorter run). Imported like sabre_output.py
 (the scripts add cases/sph to sys.path). Only the standard library is needed; matplotlib for the
 figures.
 
@@ -8,6 +8,7 @@ figures.
     surface(run)                       free surface from the eta* gauges of probes.csv
     Criteria(check)                    prints one 'ok  '/'FAIL' line per criterion; done() exits
     check_rest(tank, run, axis, crit)  criteria mass, particles, rest, hydrostatic
+    check_floor_force(tank, run, ...)  criterion floor force (force group `floor`)
     check_surface(tank, out, crit)     criteria surface and uncorrected rises
     pyplot()                           matplotlib.pyplot on the Agg backend, or None
     plot_profile(ax, tank, ...)        the final pressure against the Tait column
@@ -88,6 +89,17 @@ def check_rest(tank, run, axis, crit):
     l2 = math.sqrt(err2 / n) / (RHO0 * G * H)
     crit("hydrostatic", l2 < 0.02, f"L2(p - p_hydro)/(rho0 g H) = {100 * l2:.2f} % (< 2 %) in {last}")
     return d, t_end, hs, ps
+
+
+def check_floor_force(tank, run, column, area, crit):
+    """Criterion floor force: the last row of the force group `floor` (column `column` of
+    run/forces.csv, e.g. "floor_fy") pushes downwards within 2 % of the exact Tait column's floor
+    pressure times the floor's area [m² in 3D, m in 2D]."""
+    f_exact = tank.hydrostatic(tank.H) * area
+    f = -read_csv(f"{run}/forces.csv", lists=True)[column][-1]
+    crit("floor force", abs(f / f_exact - 1) < 0.02,
+         f"{f:.1f} N downwards against p_hydro(H) x area = {f_exact:.1f} N "
+         f"({100 * (f / f_exact - 1):+.2f} %, within 2 %)")
 
 
 def check_surface(tank, out, crit):

@@ -12,6 +12,7 @@ figures.
     check_surface(tank, out, crit)     criteria surface and uncorrected rises
     pyplot()                           matplotlib.pyplot on the Agg backend, or None
     plot_profile(ax, tank, ...)        the final pressure against the Tait column
+    figure_3d(tank, out, ...)          the three panels of the 3D cases (surface, max|u|, profile)
 """
 import glob
 import math
@@ -143,3 +144,37 @@ def plot_profile(ax, tank, hs, ps, t_end, grid, label):
     ax.set_xlabel("p / (ρ0 g H)")
     ax.set_ylabel(label)
     ax.legend(fontsize=8)
+
+
+def figure_3d(tank, out, d, surfaces, zs, ps, t_end, png):
+    """The figure of the 3D still-water cases, written to png: the free surface over t c0/H as in
+    M Fig. 8, max|u| over t/sqrt(H/g) against the 1 % line (both for out/corrected, d, and
+    out/uncorrected), and the final pressures zs, ps at t_end against the Tait column. surfaces:
+    ((times, eta) corrected, (times, eta) uncorrected) as check_surface returns them. Returns
+    False without matplotlib."""
+    plt = pyplot()
+    if plt is None:
+        return False
+    G, C0, H, DR = tank.g, tank.c0, tank.H, tank.dr
+    du = read_csv(f"{out}/uncorrected/diagnostics.csv", lists=True)
+    labels = ("gravity-corrected (local)", "uncorrected M(49)")
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
+    for lab, (t, e) in zip(labels, surfaces):
+        ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=lab)
+    ax1.axhspan(1 - 0.5 * DR / H, 1 + 0.5 * DR / H, color="0.9", label="H ± Δr/2")
+    ax1.set_xlabel("t c0 / H")
+    ax1.set_ylabel("free surface / H (mean of 5 gauges)")
+    ax1.legend(fontsize=8)
+    for lab, dd in zip(labels, (d, du)):
+        ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
+                     [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)
+    ax2.axhline(0.01, color="k", ls="--", lw=1, label="1 %")
+    ax2.set_ylim(1e-5, 1)
+    ax2.set_xlabel("t / sqrt(H/g)")
+    ax2.set_ylabel("max|u| / sqrt(gH)")
+    ax2.legend(fontsize=8)
+    plot_profile(ax3, tank, zs, ps, t_end, [i * H / 100 for i in range(101)], "z [m]")
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+    print(f"figure: {png}")
+    return True

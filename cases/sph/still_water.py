@@ -1,8 +1,8 @@
 """Analysis shared by the still-water plot scripts (cases/sph/still_water_2d, still_water_3d,
 still_water_tank_3d): a tank of depth H at rest under gravity, run as committed (corrected/) and
-without the gravity correction of the volume diffusion (uncorrected/, a shorter run). Imported like sabre_output.py
-(the scripts add cases/sph to sys.path). Only the standard library is needed; matplotlib for the
-figures.
+without the gravity correction of the volume diffusion (uncorrected/, a shorter run). Imported
+like sabre_output.py (the scripts add cases/sph to sys.path). Only the standard library is
+needed; matplotlib for the figures.
 
     Tank(rho0, c0, xi, g, H, dr)       the case's constants; tank.hydrostatic(depth) [Pa]
     surface(run)                       free surface from the eta* gauges of probes.csv

@@ -1,0 +1,73 @@
+#!/usr/bin/python3
+"""Still water in a closed 2D tank (side walls): the still-water criteria of issue 5 at
+dr = 0.025 m, the convergence of the spurious motion between dr = 0.05 m and 0.025 m, free surface
+with and without the gravity correction and the final hydrostatic pressure.
+usage: plot.py OUTPUT_DIR [--check]
+  OUTPUT_DIR holds the runs of ./check: corrected/ (the case as committed), uncorrected/ and
+  coarse/ (dr = 0.05 m). Writes OUTPUT_DIR/still_water_box_2d.png and prints the measured figures;
+  --check: exit status 1 unless every criterion of README.md holds."""
+import math
+import os
+import sys
+
+# the shared readers of sabre-sph output and still-water analysis: cases/sph/sabre_output.py and
+# cases/sph/still_water.py
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sabre_output import read_csv  # noqa: E402
+from still_water import (Criteria, Tank, check_floor_force, check_rest,  # noqa: E402
+                         check_surface, plot_profile, pyplot)
+
+TANK = Tank(rho0=1000.0, c0=20.0, xi=7.0, g=9.81, H=1.0125, dr=0.025)
+G, C0, H, DR = TANK.g, TANK.c0, TANK.H, TANK.dr
+
+
+def rms_speed(d):
+    """sqrt(2 <kinetic>/M) over the second half of a run: its mean spurious speed [m/s]."""
+    t_end = d["time"][-1]
+    ke = [k for t, k in zip(d["time"], d["kinetic"]) if t >= 0.5 * t_end]
+    return math.sqrt(2 * sum(ke) / len(ke) / d["mass"][0])
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else "out"
+    crit = Criteria("--check" in sys.argv)
+
+    d, t_end, ys, ps = check_rest(TANK, f"{out}/corrected", 1, crit)
+    check_floor_force(TANK, f"{out}/corrected", "floor_fy", 1.0, crit)  # the floor is 1 m wide
+    surfaces = check_surface(TANK, out, crit)
+    dc = read_csv(f"{out}/coarse/diagnostics.csv", lists=True)
+    uf, uc = rms_speed(d), rms_speed(dc)
+    crit("first order in dr", uc / uf >= 1.5,
+         f"rms speed over the second half {uc:.3e} m/s at dr = 0.05 m, {uf:.3e} m/s at 0.025 m: "
+         f"ratio {uc / uf:.2f} (>= 1.5; first order gives 2)")
+    print(f"     coarse (dr = 0.05 m): max|u| at the end {dc['max_speed'][-1]:.3e} m/s, at most "
+          f"{max(u for t, u in zip(dc['time'], dc['max_speed']) if t >= 0.9 * dc['time'][-1]):.3e}"
+          " over the last 10 % of the run")
+
+    plt = pyplot()
+    if plt is None:
+        crit.done()
+        return
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
+    for lab, (t, e) in zip(("gravity-corrected (local)", "uncorrected M(49)"), surfaces):
+        ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=lab)
+    ax1.axhspan(1 - 0.5 * DR / H, 1 + 0.5 * DR / H, color="0.9", label="H ± Δr/2")
+    ax1.set_xlabel("t c0 / H")
+    ax1.set_ylabel("free surface / H (mean of 5 gauges)")
+    ax1.legend(fontsize=8)
+    for lab, dd in {"Δr = 0.025 m (committed)": d, "Δr = 0.05 m": dc}.items():
+        ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
+                     [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)
+    ax2.axhline(0.01, color="k", ls="--", lw=1, label="1 %")
+    ax2.set_ylim(1e-4, 1)
+    ax2.set_xlabel("t / sqrt(H/g)")
+    ax2.set_ylabel("max|u| / sqrt(gH)")
+    ax2.legend(fontsize=8)
+    plot_profile(ax3, TANK, ys, ps, t_end, [i * H / 100 for i in range(101)], "y [m]")
+    fig.tight_layout()
+    fig.savefig(f"{out}/still_water_box_2d.png", dpi=120)
+    print(f"figure: {out}/still_water_box_2d.png")
+    crit.done()
+
+
+main()

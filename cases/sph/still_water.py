@@ -12,7 +12,8 @@ needed; matplotlib for the figures.
     check_surface(tank, out, crit)     criteria surface and uncorrected rises
     pyplot()                           matplotlib.pyplot on the Agg backend, or None
     plot_profile(ax, tank, ...)        the final pressure against the Tait column
-    figure_3d(tank, out, ...)          the three panels of the 3D cases (surface, max|u|, profile)
+    figure_rest(tank, ...)             the three panels (surface, max|u|, final pressure profile)
+    figure_3d(tank, out, ...)          figure_rest for the 3D cases
 """
 import glob
 import math
@@ -64,10 +65,10 @@ class Criteria:
 def check_rest(tank, run, axis, crit):
     """Criteria mass (to 1e-12), particles (constant), rest (max|u| < 1 % sqrt(gH) at the end,
     after at least 20 sqrt(H/g), and on every diagnostics row of the last 10 % of the run, so that
-    a passing end value is not a lucky instant of a fluctuating speed) and hydrostatic (L2 error of the pressure of the last fluid VTU
-    < 2 % of rho0 g H) of the run directory `run`; `axis` is the vertical coordinate (1: y in 2D,
-    2: z in 3D). Returns diagnostics.csv as lists, the end time, and the heights and pressures of
-    the particles of the last VTU."""
+    a passing end value is not a lucky instant of a fluctuating speed) and hydrostatic (L2 error
+    of the pressure of the last fluid VTU < 2 % of rho0 g H) of the run directory `run`; `axis`
+    is the vertical coordinate (1: y in 2D, 2: z in 3D). Returns diagnostics.csv as lists, the end
+    time, and the heights and pressures of the particles of the last VTU."""
     H, G, RHO0 = tank.H, tank.g, tank.rho0
     d = read_csv(f"{run}/diagnostics.csv", lists=True)
     m0 = d["mass"][0]
@@ -149,26 +150,24 @@ def plot_profile(ax, tank, hs, ps, t_end, grid, label):
     ax.legend(fontsize=8)
 
 
-def figure_3d(tank, out, d, surfaces, zs, ps, t_end, png):
-    """The figure of the 3D still-water cases, written to png: the free surface over t c0/H as in
-    M Fig. 8, max|u| over t/sqrt(H/g) against the 1 % line (both for out/corrected, d, and
-    out/uncorrected), and the final pressures zs, ps at t_end against the Tait column. surfaces:
-    ((times, eta) corrected, (times, eta) uncorrected) as check_surface returns them. Returns
+def figure_rest(tank, surfaces, speeds, hs, ps, t_end, vertical, png):
+    """The three-panel figure of the still-water cases, written to png: the free surface over
+    t c0/H as in M Fig. 8 (surfaces: {label: (times, eta)}), max|u|/sqrt(gH) over t/sqrt(H/g)
+    against the 1 % line (speeds: {label: diagnostics.csv as lists}), and the final pressures
+    ps at heights hs (time t_end; vertical names that axis) against the Tait column. Returns
     False without matplotlib."""
     plt = pyplot()
     if plt is None:
         return False
     G, C0, H, DR = tank.g, tank.c0, tank.H, tank.dr
-    du = read_csv(f"{out}/uncorrected/diagnostics.csv", lists=True)
-    labels = ("gravity-corrected (local)", "uncorrected M(49)")
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
-    for lab, (t, e) in zip(labels, surfaces):
+    for lab, (t, e) in surfaces.items():
         ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=lab)
     ax1.axhspan(1 - 0.5 * DR / H, 1 + 0.5 * DR / H, color="0.9", label="H ± Δr/2")
     ax1.set_xlabel("t c0 / H")
     ax1.set_ylabel("free surface / H (mean of 5 gauges)")
     ax1.legend(fontsize=8)
-    for lab, dd in zip(labels, (d, du)):
+    for lab, dd in speeds.items():
         ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
                      [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)
     ax2.axhline(0.01, color="k", ls="--", lw=1, label="1 %")
@@ -176,8 +175,17 @@ def figure_3d(tank, out, d, surfaces, zs, ps, t_end, png):
     ax2.set_xlabel("t / sqrt(H/g)")
     ax2.set_ylabel("max|u| / sqrt(gH)")
     ax2.legend(fontsize=8)
-    plot_profile(ax3, tank, zs, ps, t_end, [i * H / 100 for i in range(101)], "z [m]")
+    plot_profile(ax3, tank, hs, ps, t_end, [i * H / 100 for i in range(101)], vertical)
     fig.tight_layout()
     fig.savefig(png, dpi=120)
     print(f"figure: {png}")
     return True
+
+
+def figure_3d(tank, out, d, surfaces, zs, ps, t_end, png):
+    """figure_rest for the 3D cases: surfaces as check_surface returns them, max|u| of
+    out/corrected (d) and out/uncorrected."""
+    labels = ("gravity-corrected (local)", "uncorrected M(49)")
+    du = read_csv(f"{out}/uncorrected/diagnostics.csv", lists=True)
+    return figure_rest(tank, dict(zip(labels, surfaces)), dict(zip(labels, (d, du))), zs, ps,
+                       t_end, "z [m]", png)

@@ -15,10 +15,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from sabre_output import read_csv  # noqa: E402
 from still_water import (Criteria, Tank, check_floor_force, check_rest,  # noqa: E402
-                         check_surface, plot_profile, pyplot)
+                         check_surface, figure_rest)
 
 TANK = Tank(rho0=1000.0, c0=20.0, xi=7.0, g=9.81, H=1.0125, dr=0.025)
-G, C0, H, DR = TANK.g, TANK.c0, TANK.H, TANK.dr
 
 
 def rms_speed(d):
@@ -44,29 +43,10 @@ def main():
           f"{max(u for t, u in zip(dc['time'], dc['max_speed']) if t >= 0.9 * dc['time'][-1]):.3e}"
           " over the last 10 % of the run")
 
-    plt = pyplot()
-    if plt is None:
-        crit.done()
-        return
-    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
-    for lab, (t, e) in zip(("gravity-corrected (local)", "uncorrected M(49)"), surfaces):
-        ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=lab)
-    ax1.axhspan(1 - 0.5 * DR / H, 1 + 0.5 * DR / H, color="0.9", label="H ± Δr/2")
-    ax1.set_xlabel("t c0 / H")
-    ax1.set_ylabel("free surface / H (mean of 5 gauges)")
-    ax1.legend(fontsize=8)
-    for lab, dd in {"Δr = 0.025 m (committed)": d, "Δr = 0.05 m": dc}.items():
-        ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
-                     [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)
-    ax2.axhline(0.01, color="k", ls="--", lw=1, label="1 %")
-    ax2.set_ylim(1e-4, 1)
-    ax2.set_xlabel("t / sqrt(H/g)")
-    ax2.set_ylabel("max|u| / sqrt(gH)")
-    ax2.legend(fontsize=8)
-    plot_profile(ax3, TANK, ys, ps, t_end, [i * H / 100 for i in range(101)], "y [m]")
-    fig.tight_layout()
-    fig.savefig(f"{out}/still_water_box_2d.png", dpi=120)
-    print(f"figure: {out}/still_water_box_2d.png")
+    labels = ("gravity-corrected (local)", "uncorrected M(49)")
+    speeds = {"Δr = 0.025 m (committed)": d, "Δr = 0.05 m": dc}
+    figure_rest(TANK, dict(zip(labels, surfaces)), speeds, ys, ps, t_end, "y [m]",
+                f"{out}/still_water_box_2d.png")
     crit.done()
 
 

@@ -8,6 +8,7 @@ needed; matplotlib for the figures.
     surface(run)                       free surface from the eta* gauges of probes.csv
     Criteria(check)                    prints one 'ok  '/'FAIL' line per criterion; done() exits
     check_rest(tank, run, axis, crit)  criteria mass, particles, rest, hydrostatic
+    tail_max_speed(d), rms_speed(run, d)  largest max|u| of the last 10 %; mean fluid speed
     check_floor_force(tank, run, ...)  criterion floor force (force group `floor`)
     check_surface(tank, out, crit)     criteria surface and uncorrected rises
     pyplot()                           matplotlib.pyplot on the Agg backend, or None
@@ -62,6 +63,23 @@ class Criteria:
             sys.exit(1)
 
 
+def tail_max_speed(d):
+    """The largest max_speed of diagnostics.csv (as lists, d) over the last 10 % of the run."""
+    t_end = d["time"][-1]
+    return max(u for t, u in zip(d["time"], d["max_speed"]) if t >= 0.9 * t_end)
+
+
+def rms_speed(run, d):
+    """sqrt(2 <kinetic>/M_fluid) over the second half of the run directory `run` (d: its
+    diagnostics.csv as lists): the mean speed of the fluid [m/s]. M_fluid is summed from the
+    first fluid VTU (diagnostics.csv's mass includes the vertex particles)."""
+    t_end = d["time"][-1]
+    ke = [k for t, k in zip(d["time"], d["kinetic"]) if t >= 0.5 * t_end]
+    first = sorted(glob.glob(f"{run}/fluid_*.vtu"))[0]
+    m_fluid = sum(m for (m,) in read_vtu(first, tuples=True)["mass"])
+    return math.sqrt(2 * sum(ke) / len(ke) / m_fluid)
+
+
 def check_rest(tank, run, axis, crit):
     """Criteria mass (to 1e-12), particles (constant), rest (max|u| < 1 % sqrt(gH) at the end,
     after at least 20 sqrt(H/g), and on every diagnostics row of the last 10 % of the run, so that
@@ -78,7 +96,7 @@ def check_rest(tank, run, axis, crit):
          f"{int(d['particles'][0])} throughout")
     t_end = d["time"][-1]
     umax, ref = d["max_speed"][-1], 0.01 * math.sqrt(G * H)
-    utail = max(u for t, u in zip(d["time"], d["max_speed"]) if t >= 0.9 * t_end)
+    utail = tail_max_speed(d)
     crit("rest", t_end >= 20 * math.sqrt(H / G) - 1e-9 and max(umax, utail) < ref,
          f"max|u| = {umax:.3e} m/s at t = {t_end:.3f} s = {t_end / math.sqrt(H / G):.1f} sqrt(H/g),"
          f" at most {utail:.3e} over the last 10 % of the run"

@@ -128,6 +128,10 @@ enum sph_diffusion { SPH_DIFFUSION_NONE = 0, SPH_DIFFUSION_FERRARI = 1, SPH_DIFF
 enum sph_diffusion_speed { SPH_DSPEED_MAX = 0, SPH_DSPEED_ETA = 1 };
 /** Hydrostatic correction of the Shepard vertex values: none, full g·r_vb, tangential M(83). */
 enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TANGENTIAL = 2 };
+/** Vertex masses m_v = ρ_v V_v: V_v the geometric volume of the wall layer nearest to the vertex
+ *  (sph_walls_vertex_volumes), or a layer φΔr thick with φ fitted to the initial summation
+ *  density (docs/sph-solver.md §6). */
+enum sph_vertex_volume { SPH_VVOL_GEOMETRIC = 0, SPH_VVOL_FITTED = 1 };
 
 #define SPH_MAX_PROBES 64
 #define SPH_MAX_FORCE_GROUPS 16
@@ -185,6 +189,10 @@ struct sph_config {
                                (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
   int vertex_hydro;       /**< enum sph_vertex_hydro */
   int gamma_dynamic;      /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
+  int vertex_volume;      /**< enum sph_vertex_volume */
+  double vertex_layer;    /**< thickness of the wall layer of the vertex volumes [Δr] */
+  long repack_steps;      /**< pseudo-time steps of the initial repacking (0: none) */
+  double repack_damping;  /**< repacking: velocities × e^(−1/damping) per step [steps] */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   double dt_max;
@@ -248,8 +256,10 @@ struct sph_solver {
   int *seg_group;  /**< force group of each segment (−1 none) */
   int *vert_group; /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
-  double vertex_phi; /**< vertex layer thickness / Δr of the vertex masses [-] */
-  int *vert_bc;      /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */
+  double vertex_phi;         /**< vertex layer thickness / Δr of the vertex masses [-] */
+  double repack_residual[2]; /**< largest defect × h before and after the repacking [-] */
+  size_t repack_fixed;       /**< fluid particles held by the repacking's lid */
+  int *vert_bc; /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */
   size_t cap_vert_bc;
   /** First vertex whose value failed in the last sph_solver_boundary_values() (−1: none), its
    *  SPH_ROBIN_* status and a message naming the vertex id and position. */
@@ -283,6 +293,24 @@ void sph_solver_sync(struct sph_solver *sv);
 /** Lists, γ, boundary values and forces of the current state (what a step starts with; also
  *  called before wall forces and probes are written). Cheap to call twice: the step reuses it. */
 void sph_solver_evaluate(struct sph_solver *sv);
+/**
+ * Initial repacking (docs/sph-solver.md §8): moves the fluid particles, before t = 0, towards an
+ * arrangement in which the zeroth-order defect of the pressure gradient, Σ_{b∈F∪V} V_b ∇w_ab −
+ * ∇γ_a (docs/sph-solver.md §2), vanishes, so that fluid at uniform pressure next to walls, edges
+ * and corners is at rest. A damped pseudo-dynamics of `steps` steps under the solver's own
+ * momentum equation at a uniform pressure without gravity (V_b = Δr^d): the force is then
+ * −(2p/ρ) times the defect, the gradient of a potential, so the damped motion settles. Particles
+ * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
+ * 2h stay where they are (a lid: a free surface has a defect of its own). Pseudo-velocities decay
+ * by e^(−1/damping) per step (damping in steps, > 0); the pseudo time step is the solver's CFL and
+ * force limits, and at most h/10 of displacement per step. On return the fluid velocities are
+ * zero and gravity is restored; masses and densities are uniform (ρ0 (1 + 1e-6), m = ρ Δr^d) and
+ * must be set by the caller for the new positions; lists and wall data are stale
+ * (sph_solver_sync() was called). sv->repack_residual[0..1] receive the largest defect × h before
+ * and after, sv->repack_fixed the number of particles held. Returns 0, or -1 with a message when
+ * a particle ended behind a wall.
+ */
+int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *msg, size_t msglen);
 /**
  * EOS for every fluid particle, then the vertex pressures — Shepard M(16–17) with the hydrostatic
  * correction, or per wall group (sph_solver_vertex_groups) the order-m least squares M(64–74) with

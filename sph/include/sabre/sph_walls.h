@@ -117,6 +117,23 @@ int sph_gamma_eval(const struct sph_kernel *k, const double *a, size_t n,
 double sph_gamma_dynamic_step(double gamma_old, const double *v_old, const double *grad_old,
                               const double *v_new, const double *grad_new, int dim, double dt);
 
+struct sph_system;
+
+/**
+ * Geometric vertex volumes [m^d]: volume[i] (i over the vertex store of s) is the part of the wall
+ * layer, the fluid within `thickness` [m] of the walls, that vertex i stands for. The layer is cut
+ * into the parts nearest to each element (no double counting where elements meet at a concave
+ * edge or corner) and each element's part goes to the element's vertex nearest to it (the
+ * vertex's Voronoi cell within the element). Flat wall meshed at spacing Δr: Δr^(d−1) thickness
+ * per vertex; in a right-angled box with thickness Δr/2: 1/2 of that on 3D edges and 2D corners,
+ * 1/4 at 3D corners (the reference implementation's vertex volumes). Each element is sampled at
+ * about 8 points per Δr (s->dr) along each direction, the depth by bisection: exact on 2D meshes
+ * at spacing Δr, about 1 % at 3D edges and corners; the sum is the layer's volume to about 1e-4.
+ * The caller owns `volume` (the vertex count of s). Returns 0, or -1 for a negative thickness or
+ * Δr ≤ 0 (volume zeroed).
+ */
+int sph_walls_vertex_volumes(const struct sph_system *s, double thickness, double *volume);
+
 #ifdef __cplusplus
 }
 #endif

@@ -236,13 +236,20 @@ int sph_cmd_run(int argc, char **argv) {
   long *seg_edge;
   segment_sources(&g, c, &seg_wall, &seg_edge);
   struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
+  if (restart) cfg.repack_steps = 0; /* the checkpoint has the positions */
   sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
+  if (cfg.repack_steps > 0)
+    cmn_message(
+        "repacking: %ld steps, %zu particles held at the free surface, largest defect "
+        "|sum V_b grad w_ab - grad gamma_a| h %.3g -> %.3g",
+        cfg.repack_steps, sv->repack_fixed, sv->repack_residual[0], sv->repack_residual[1]);
   free(seg_wall);
   free(seg_edge);
   sph_system_free(&s);
   sph_geometry_free(&g);
 
-  if (sv->sys.part[SPH_KIND_VERTEX].n > 0 && sv->vertex_phi < 0.25)
+  if (sv->sys.part[SPH_KIND_VERTEX].n > 0 && cfg.vertex_volume == SPH_VVOL_FITTED &&
+      sv->vertex_phi < 0.25)
     cmn_warning(
         "%s: the fitted wall layer is %.2f dr thick: the first fluid row is about dr/2 "
         "from the walls, where walls attract the fluid (docs/sph-solver.md section 7); "

@@ -10,6 +10,7 @@
 #include "operators/pair.h"
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
+#include "sabre/sph_walls.h"
 
 /* Hydrostatic pressure at depth d ≥ 0 below the level of p = 0, exact for the Tait EOS:
  * dp/dd = ρ(p) |g|  ⇒  p = b [(1 + (ξ−1) |g| d / c0²)^(ξ/(ξ−1)) − 1]  (ξ = 1: b (e^{|g|d/c0²} −
@@ -73,6 +74,108 @@ static void vertex_masses(struct sph_solver *sv) {
   free(unit);
 }
 
+/* The initial pressure and density as functions of position: hydrostatic below a level, a number
+ * or expressions of x, y, z (initial.pressure / initial.density). */
+struct profile {
+  const struct rmn_eos *eos;
+  int hydrostatic;
+  double gnorm, up[3], level; /* |g|, −g/|g|, the level of p = 0 along up */
+  double p_const;
+  struct cmn_expr *p_expr, *rho_expr;
+};
+
+static void profile_init(struct profile *pr, const struct sph_solver *sv) {
+  const struct sph_config *cfg = &sv->cfg;
+  const struct sph_system *sys = &sv->sys;
+  const struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
+  memset(pr, 0, sizeof *pr);
+  pr->eos = &sv->eos;
+  pr->hydrostatic = cfg->hydrostatic;
+  pr->gnorm = sqrt(cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
+                   cfg->gravity[2] * cfg->gravity[2]);
+  if (pr->gnorm > 0.0)
+    for (int c = 0; c < 3; c++) pr->up[c] = -cfg->gravity[c] / pr->gnorm;
+  pr->level = cfg->free_surface;
+  if (isnan(pr->level)) {
+    pr->level = -INFINITY;
+    for (size_t a = 0; a < f->n; a++)
+      pr->level =
+          fmax(pr->level, pr->up[0] * f->x[0][a] + pr->up[1] * f->x[1][a] + pr->up[2] * f->x[2][a]);
+    pr->level += 0.5 * sys->dr;
+  }
+  pr->p_expr = compile_initial(cfg->p0_expr, "initial.pressure", sys->dim);
+  pr->rho_expr = compile_initial(cfg->rho0_expr, "initial.density", sys->dim);
+}
+
+static void profile_free(struct profile *pr) {
+  cmn_expr_free(pr->p_expr);
+  cmn_expr_free(pr->rho_expr);
+}
+
+/* Initial density at x [kg/m³]; stops the program on a value out of range. */
+static double profile_density(const struct profile *pr, const double *x) {
+  double p = 0.0;
+  if (pr->hydrostatic && pr->gnorm > 0.0) {
+    double depth = pr->level - (pr->up[0] * x[0] + pr->up[1] * x[1] + pr->up[2] * x[2]);
+    p = hydrostatic_pressure(pr->eos, pr->gnorm, fmax(depth, 0.0));
+  }
+  if (pr->p_expr) p = cmn_expr_eval(pr->p_expr, x);
+  const double pmin = rmn_eos_min_pressure(pr->eos);
+  if (!(p > pmin) || !isfinite(p))
+    cmn_input_error("initial.pressure: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa",
+                    p, x[0], x[1], x[2], pmin);
+  const double rho = pr->rho_expr ? cmn_expr_eval(pr->rho_expr, x) : rmn_eos_density(pr->eos, p);
+  if (!(rho > 0.0) || !isfinite(rho))
+    cmn_input_error("initial.density: %g kg/m^3 at (%g, %g, %g) is not positive", rho, x[0], x[1],
+                    x[2]);
+  return rho;
+}
+
+/* Densities and masses m_a = ρ_a Δr^d of the fluid at its current positions. */
+static void fluid_density(struct sph_solver *sv, const struct profile *pr) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double vol = pow(sv->sys.dr, sv->sys.dim);
+  for (size_t a = 0; a < f->n; a++) {
+    const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    f->rho[a] = profile_density(pr, x);
+    f->mass[a] = f->rho[a] * vol;
+  }
+}
+
+/* Initial velocities (numbers or expressions of the position). */
+static void fluid_velocity(struct sph_solver *sv) {
+  const struct sph_config *cfg = &sv->cfg;
+  struct sph_system *sys = &sv->sys;
+  struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
+  struct cmn_expr *u_expr[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < sys->dim; c++)
+    u_expr[c] = compile_initial(cfg->u0_expr[c], "initial.velocity", sys->dim);
+  for (size_t a = 0; a < f->n; a++) {
+    const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    for (int c = 0; c < 3; c++) {
+      f->v[c][a] = c < sys->dim ? (u_expr[c] ? cmn_expr_eval(u_expr[c], x) : cfg->u0[c]) : 0.0;
+      if (!isfinite(f->v[c][a]))
+        cmn_input_error("initial.velocity[%d]: %g m/s at (%g, %g, %g) is not finite", c, f->v[c][a],
+                        x[0], x[1], x[2]);
+    }
+  }
+  for (int c = 0; c < 3; c++) cmn_expr_free(u_expr[c]);
+}
+
+/* Vertex masses: geometric (the wall layer nearest to each vertex) or fitted (vertex_masses). */
+static void vertex_masses_set(struct sph_solver *sv) {
+  struct sph_system *sys = &sv->sys;
+  struct sph_parts *v = &sys->part[SPH_KIND_VERTEX];
+  if (sv->cfg.vertex_volume == SPH_VVOL_FITTED) {
+    vertex_masses(sv);
+    return;
+  }
+  if (sph_walls_vertex_volumes(sys, sv->cfg.vertex_layer * sys->dr, v->mass) != 0)
+    cmn_error("vertex volumes: bad layer thickness %g m", sv->cfg.vertex_layer * sys->dr);
+  for (size_t i = 0; i < v->n; i++) v->mass[i] *= v->rho[i];
+  sv->vertex_phi = sv->cfg.vertex_layer;
+}
+
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,
                      const int *seg_wall, const long *seg_edge) {
   memset(sv, 0, sizeof *sv);
@@ -88,53 +191,11 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     cmn_error("bad EOS: rho0 = %g, c0 = %g, xi = %g", cfg->rho0, cfg->c0, cfg->xi);
 
   struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
-  const double gnorm = sqrt(cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
-                            cfg->gravity[2] * cfg->gravity[2]);
-  double up[3] = {0.0, 0.0, 0.0}; /* −g/|g| */
-  if (gnorm > 0.0)
-    for (int c = 0; c < 3; c++) up[c] = -cfg->gravity[c] / gnorm;
-  double level = cfg->free_surface;
-  if (isnan(level)) {
-    level = -INFINITY;
-    for (size_t a = 0; a < f->n; a++)
-      level = fmax(level, up[0] * f->x[0][a] + up[1] * f->x[1][a] + up[2] * f->x[2][a]);
-    level += 0.5 * sys->dr;
-  }
-  const double vol = pow(sys->dr, sys->dim);
-  /* Profiles given as expressions of the coordinates (checked by sph_config_read()). */
-  struct cmn_expr *u_expr[3] = {NULL, NULL, NULL};
-  struct cmn_expr *p_expr = compile_initial(cfg->p0_expr, "initial.pressure", sys->dim);
-  struct cmn_expr *rho_expr = compile_initial(cfg->rho0_expr, "initial.density", sys->dim);
-  for (int c = 0; c < sys->dim; c++)
-    u_expr[c] = compile_initial(cfg->u0_expr[c], "initial.velocity", sys->dim);
-  const double pmin = rmn_eos_min_pressure(&sv->eos);
-  for (size_t a = 0; a < f->n; a++) {
-    const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-    double p = 0.0;
-    if (cfg->hydrostatic && gnorm > 0.0) {
-      double depth = level - (up[0] * x[0] + up[1] * x[1] + up[2] * x[2]);
-      p = hydrostatic_pressure(&sv->eos, gnorm, fmax(depth, 0.0));
-    }
-    if (p_expr) p = cmn_expr_eval(p_expr, x);
-    if (!(p > pmin) || !isfinite(p))
-      cmn_input_error(
-          "initial.pressure: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa", p, x[0],
-          x[1], x[2], pmin);
-    f->rho[a] = rho_expr ? cmn_expr_eval(rho_expr, x) : rmn_eos_density(&sv->eos, p);
-    if (!(f->rho[a] > 0.0) || !isfinite(f->rho[a]))
-      cmn_input_error("initial.density: %g kg/m^3 at (%g, %g, %g) is not positive", f->rho[a], x[0],
-                      x[1], x[2]);
-    f->mass[a] = f->rho[a] * vol;
-    for (int c = 0; c < 3; c++) {
-      f->v[c][a] = c < sys->dim ? (u_expr[c] ? cmn_expr_eval(u_expr[c], x) : cfg->u0[c]) : 0.0;
-      if (!isfinite(f->v[c][a]))
-        cmn_input_error("initial.velocity[%d]: %g m/s at (%g, %g, %g) is not finite", c, f->v[c][a],
-                        x[0], x[1], x[2]);
-    }
-  }
-  cmn_expr_free(p_expr);
-  cmn_expr_free(rho_expr);
-  for (int c = 0; c < 3; c++) cmn_expr_free(u_expr[c]);
+  struct profile prof;
+  profile_init(&prof, sv);
+  fluid_density(sv, &prof);
+  for (int c = 0; c < 3; c++)
+    for (size_t a = 0; a < f->n; a++) f->v[c][a] = 0.0;
   struct sph_parts *v = &sys->part[SPH_KIND_VERTEX];
   for (size_t i = 0; i < v->n; i++) v->rho[i] = cfg->rho0;
 
@@ -143,8 +204,22 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_solver_sync(sv);
   sph_solver_vertex_groups(sv, seg_wall, seg_edge);
   sph_solver_boundary_values(sv);
-  vertex_masses(sv);
+  vertex_masses_set(sv);
   sph_solver_boundary_values(sv);
+  if (cfg->repack_steps > 0) {
+    char msg[512];
+    if (sph_solver_repack(sv, cfg->repack_steps, cfg->repack_damping, msg, sizeof msg) != 0)
+      cmn_input_error("%s", msg);
+    fluid_density(sv, &prof);
+    sph_nbrs_build(&sv->nb, sys, cfg->skin_over_h * sys->h);
+    sph_nbrs_gamma(&sv->nb, sys, &sv->kernel);
+    sph_solver_sync(sv);
+    sph_solver_boundary_values(sv);
+    if (cfg->vertex_volume == SPH_VVOL_FITTED) vertex_masses(sv);
+    sph_solver_boundary_values(sv);
+  }
+  profile_free(&prof);
+  fluid_velocity(sv);
 
   sv->evaluated_step = -1;
 

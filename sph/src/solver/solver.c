@@ -481,6 +481,104 @@ void sph_solver_evaluate(struct sph_solver *sv) {
   sv->evaluated_step = sv->step;
 }
 
+/* Kernel completeness below which a particle is on a free surface (the top row has about 0.55;
+ * holes next to walls in a closed tank stay above 0.8). */
+#define SPH_REPACK_SURFACE 0.75
+
+/* Kernel completeness Σ_{b∈P} V_b w_ab / γ_a of fluid particle a (1 inside the fluid and next to
+ * walls, up to the quadrature error; about 1/2 on a free surface). */
+static double completeness(const struct sph_solver *sv, size_t a) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  double sum = f->mass[a] / f->rho[a] * sph_kernel_w_inline(&sv->kernel, 0.0);
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &sv->sys.part[kind];
+    const struct sph_nlist *nl = &sv->nb.list[kind];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      struct sph_pair pr;
+      const size_t b = nl->index[q];
+      if (sph_pair_eval(&sv->kernel, &sv->sys, f, a, pb, b, &pr))
+        sum += pb->mass[b] / pb->rho[b] * pr.w;
+    }
+  }
+  return sum / f->gamma[a];
+}
+
+int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *msg, size_t msglen) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const size_t n = f->n;
+  const double h = sv->sys.h, decay = exp(-1.0 / damping);
+  const double rho_r = (1.0 + 1e-6) * sv->cfg.rho0, vol = pow(sv->sys.dr, sv->sys.dim);
+  double gravity[3];
+  memcpy(gravity, sv->cfg.gravity, sizeof gravity);
+  for (int c = 0; c < 3; c++) sv->cfg.gravity[c] = 0.0;
+  for (size_t a = 0; a < n; a++) {
+    f->rho[a] = rho_r;
+    f->mass[a] = rho_r * vol;
+    for (int c = 0; c < 3; c++) f->v[c][a] = 0.0;
+  }
+  /* The lid: particles on a free surface and their neighbours within 2h stay put. */
+  sv->gamma_current = 0;
+  sph_solver_evaluate(sv);
+  unsigned char *fixed = cmn_calloc(n + 1, 1);
+  for (size_t a = 0; a < n; a++) fixed[a] = completeness(sv, a) < SPH_REPACK_SURFACE;
+  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
+  for (size_t a = 0; a < n; a++) {
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1] && fixed[a] == 0; q++) {
+      struct sph_pair pr;
+      const size_t b = nl->index[q];
+      if (fixed[b] == 1 && sph_pair_eval(&sv->kernel, &sv->sys, f, a, f, b, &pr)) fixed[a] = 2;
+    }
+  }
+  sv->repack_fixed = 0;
+  for (size_t a = 0; a < n; a++) sv->repack_fixed += fixed[a] != 0;
+  const double p_r = rmn_eos_pressure(&sv->eos, rho_r);
+  const double v_ref = sqrt(2.0 * p_r / rho_r);
+  for (long it = 0;; it++) {
+    double amax = 0.0, vmax = 0.0;
+    for (size_t a = 0; a < n; a++) {
+      if (fixed[a])
+        for (int c = 0; c < 3; c++) sv->acc[c][a] = 0.0;
+      double a2 = 0.0, v2 = 0.0;
+      for (int c = 0; c < 3; c++) {
+        a2 += sv->acc[c][a] * sv->acc[c][a];
+        v2 += f->v[c][a] * f->v[c][a];
+      }
+      amax = fmax(amax, sqrt(a2));
+      vmax = fmax(vmax, sqrt(v2));
+    }
+    /* Residual in units of the defect: max |Σ_{b∈P} V_b ∇w_ab − ∇γ_a| h (a = −2 p_r/ρ D_a). */
+    const double residual = amax * h / (2.0 * p_r / rho_r);
+    if (it == 0) sv->repack_residual[0] = residual;
+    sv->repack_residual[1] = residual;
+    if (it == steps || !(amax > 0.0)) break;
+    double dt = fmin(sv->cfg.force_factor * sqrt(h / amax), sv->cfg.cfl * h / v_ref);
+    if (vmax > 0.0) dt = fmin(dt, 0.1 * h / vmax);
+    for (int c = 0; c < 3; c++)
+      for (size_t a = 0; a < n; a++) {
+        f->v[c][a] = fixed[a] ? 0.0 : decay * f->v[c][a] + dt * sv->acc[c][a];
+        f->x[c][a] += dt * f->v[c][a];
+      }
+    wrap(sv);
+    sv->gamma_current = 0;
+    sph_solver_evaluate(sv);
+  }
+  free(fixed);
+  memcpy(sv->cfg.gravity, gravity, sizeof gravity);
+  for (int c = 0; c < 3; c++)
+    for (size_t a = 0; a < n; a++) f->v[c][a] = 0.0;
+  size_t behind = 0, first = 0;
+  for (size_t a = 0; a < n; a++)
+    if (sv->nb.behind[a] && behind++ == 0) first = a;
+  sph_solver_sync(sv);
+  if (behind == 0) return 0;
+  snprintf(msg, msglen,
+           "repacking: %zu fluid particles left the fluid domain through a wall, the first "
+           "(index %zu) at (%.9g, %.9g, %.9g); fewer repack.steps or a larger repack.damping "
+           "may help",
+           behind, first, f->x[0][first], f->x[1][first], f->x[2][first]);
+  return -1;
+}
+
 /* Stop the step when a vertex value could not be computed (docs/sph-robin.md §5). */
 static int vertex_failed(const struct sph_solver *sv, char *msg, size_t msglen) {
   if (sv->vertex_fail < 0) return 0;

@@ -225,7 +225,10 @@ struct fv1d_stats {
  * Integrate from the current time with ARKODE ERKStep (THEORY §2), stopping exactly at each output
  * time params->output_times[k] and ending at the last one (fv1d_case_read makes it t_end; output
  * times already passed are skipped). The observer (may be NULL) is called as documented at
- * fv1d_event; a non-zero return aborts the run. Returns 0 or -1 (message in fv1d_solver_error()).
+ * fv1d_event; a non-zero return aborts the run. Returns 0 (reached the last output time), 1
+ * (stopped after params->max_steps steps counted from the start, before it: the state is
+ * consistent, the message in fv1d_solver_error() says where) or -1 (failure, message in
+ * fv1d_solver_error()).
  */
 int fv1d_integrate(struct fv1d_solver *s, fv1d_observer_fn observer, void *user,
                    struct fv1d_stats *stats);

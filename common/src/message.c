@@ -29,8 +29,10 @@ const char *cmn_program_name(void) { return program_name; }
 void cmn_print_version(void) { printf("%s %s\n", program_name, SABRE_VERSION); }
 
 int cmn_stdout_status(int status) {
+  static int reported = 0; /* one message, however many callers check */
   errno = 0;
   if (fflush(stdout) != 0 || ferror(stdout)) {
+    if (reported++) return CMN_EXIT_FAILURE;
     fprintf(stderr, "%s: error: cannot write the output: %s\n", program_name,
             errno ? strerror(errno) : "write error");
     return CMN_EXIT_FAILURE;

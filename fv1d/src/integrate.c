@@ -1,6 +1,6 @@
-/* Method of lines with SUNDIALS ARKODE ERKStep (THEORY §2): an SSP-RK3 (Shu–Osher) Butcher table
- * through ERKStepSetTable by default, or any ARKODE ERK table by name; a fixed CFL step chosen
- * before every step, or ARKODE's error control with the CFL step as stability bound. */
+/* Method of lines with SUNDIALS ARKODE ERKStep (docs/theory.md §2): an SSP-RK3 (Shu–Osher) Butcher
+ * table through ERKStepSetTable by default, or any ARKODE ERK table by name; a fixed CFL step
+ * chosen before every step, or ARKODE's error control with the CFL step as stability bound. */
 #include <arkode/arkode_erkstep.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>

@@ -29,10 +29,10 @@ extern "C" {
  *
  * One struct sph_parts holds the particles of one kind as a structure of arrays, so a neighbour
  * loop streams through the few arrays it reads. Kinds follow the unified semi-analytical wall
- * model (THEORY §3): fluid particles, vertex particles (mesh nodes of the walls, their masses vary
- * on open boundaries) and segment particles (1D: a boundary point; 2D: a line segment between two
- * vertices; 3D: a triangle between three vertices). The fluid count varies at run time (particles
- * are created and removed at open boundaries); ids are stable and unique over all kinds.
+ * model (docs/theory.md §3): fluid particles, vertex particles (mesh nodes of the walls, their
+ * masses vary on open boundaries) and segment particles (1D: a boundary point; 2D: a line segment
+ * between two vertices; 3D: a triangle between three vertices). The fluid count varies at run time
+ * (particles are created and removed at open boundaries); ids are stable and unique over all kinds.
  * ------------------------------------------------------------------------------------------- */
 
 enum sph_kind { SPH_KIND_FLUID = 0, SPH_KIND_VERTEX = 1, SPH_KIND_SEGMENT = 2 };

@@ -115,6 +115,7 @@ has 'time.max_steps = 4 reached' err
 sed 's/pressure: hydrostatic/pressure: "1000 * sqrt(x - 0.1)"/' "$tmp/case.yaml" >"$tmp/expr.yaml"
 run 2 20 "$tool" run "$tmp/expr.yaml" --output "$tmp/x1"
 has 'expr.yaml:17:[0-9]*: initial.pressure: .* at the fluid particle' err
+[ -e "$tmp/x1" ] && bad "a run directory was created for bad input" || ok
 run 1 20 "$tool" run "$tmp/case.yaml" --output "$tmp/x2" --set 'initial.velocity=[1e300, 0]'
 has 'time step 0 s is not positive: fluid particle id .* non-finite state' err
 run 2 10 "$tool" run "$tmp/case.yaml" --output /dev/null/out

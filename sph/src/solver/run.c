@@ -258,7 +258,6 @@ int sph_cmd_run(int argc, char **argv) {
   struct sph_config cfg;
   sph_config_read(&cfg, c, g.dim);
   cmn_case_check_unused(c);
-  cmn_cli_write_used(c, output);
 
   struct sph_system s;
   cmn_message("building the particles...");
@@ -266,6 +265,8 @@ int sph_cmd_run(int argc, char **argv) {
   if (s.part[SPH_KIND_FLUID].n == 0)
     cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
   sph_config_check_initial(&cfg, c, &s);
+  /* the run directory only once the input is known good: no half-written output on bad input */
+  cmn_cli_write_used(c, output);
   int *seg_wall;
   long *seg_edge;
   segment_sources(&g, c, &seg_wall, &seg_edge);

@@ -97,7 +97,7 @@ YAML
 run 2 20 "$tool" mesh "$tmp/stl.yaml" --output "$tmp/e4"
 has 'geometry.dr: .*wall segments.*memory.*unit' err
 run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/e5" --set geometry.h_over_dr=1e6
-has 'geometry.h_over_dr: expected a number in \[1, 4\]' err
+has 'geometry.h_over_dr: expected a number in \[1, 20\]' err
 run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/e6" \
   --set 'geometry.fluid[0]={type: polygon, points: [[0, 0], [0.2, 0.2], [0.2, 0], [0, 0.2]]}'
 has 'geometry.fluid\[0\].points: the polygon crosses itself' err

@@ -297,7 +297,7 @@ int sph_mesh_write_stl(const struct sph_mesh *m, const char *path, int binary);
 
 /** Range of geometry.h_over_dr (docs/sph-geometry.md). */
 #define SPH_H_OVER_DR_MIN 1.0
-#define SPH_H_OVER_DR_MAX 4.0
+#define SPH_H_OVER_DR_MAX 20.0
 
 /** Resolved `geometry` section of a case file (docs/sph-geometry.md). */
 struct sph_geometry {

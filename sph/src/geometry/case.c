@@ -376,8 +376,8 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
   cmn_case_get_long(c, "geometry.dimension", 1, 3, &dim);
   g->dim = (int)dim;
   cmn_case_get_positive(c, "geometry.dr", &g->dr);
-  /* h/dr beyond [1, 4]: too few neighbours for the kernel sums, or a neighbour count (and memory)
-   * growing as (h/dr)^d for no gain; 1e6 is a typo, not a resolution. */
+  /* h/dr in [1, 20]: below, too few neighbours for the kernel sums; above, neighbour counts (and
+   * memory) grow as (h/dr)^d far beyond any convergence study. 1e6 is a typo, not a resolution. */
   cmn_case_opt_double(c, "geometry.h_over_dr", 2.0, SPH_H_OVER_DR_MIN, SPH_H_OVER_DR_MAX,
                       &g->h_over_dr);
   cmn_case_opt_double(c, "geometry.min_wall_distance", 0.5 * g->dr, 0, INFINITY,

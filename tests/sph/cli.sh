@@ -35,8 +35,8 @@ YAML
 # expect STATUS SECONDS CMD...: exit status within a time limit; stdout/stderr in $tmp/out, err
 expect() {
   local want=$1 limit=$2; shift 2
-  timeout "$limit" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
-  if [ $rc -eq 124 ]; then bad "still running after $limit s: $*"; return; fi
+  timeout -k 5 "$limit" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  if [ $rc -eq 124 ] || [ $rc -eq 137 ]; then bad "still running after $limit s: $*"; return; fi
   if [ $rc -eq "$want" ]; then ok; else bad "exit $rc (want $want) for: $* :: $(tail -3 "$tmp/err")"; fi
 }
 has() { if grep -q -- "$1" "$tmp/$2"; then ok; else bad "'$1' not in $2: $(tail -3 "$tmp/$2")"; fi; }

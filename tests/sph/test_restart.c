@@ -85,7 +85,7 @@ static void same_file(const char *a, const char *b) {
 }
 
 static int run(const char *out, const char *set, const char *restart) {
-  char *argv[16];
+  char *argv[32];
   int argc = 0;
   argv[argc++] = "run";
   argv[argc++] = path("case.yaml", NULL);
@@ -94,9 +94,9 @@ static int run(const char *out, const char *set, const char *restart) {
   argv[argc++] = "--threads";
   argv[argc++] = "1";
   /* set: one or more "key=value" separated by ';' */
-  static char sets[4][256];
+  static char sets[8][256];
   int ns = 0;
-  for (const char *p = set; p && *p && ns < 4; ns++) {
+  for (const char *p = set; p && *p && ns < 8; ns++) {
     const char *e = strchr(p, ';');
     size_t len = e ? (size_t)(e - p) : strlen(p);
     snprintf(sets[ns], sizeof sets[ns], "%.*s", (int)len, p);

@@ -1,10 +1,12 @@
 /* sabre-fv1d: the 1D finite-volume reference solver.
  *   sabre-fv1d CASE.yaml [--set key=value]... [--output DIR] [--quiet]
+ *   sabre-fv1d --version
  *   sabre-fv1d riemann --xi X --rho0 R --c0 C --left RHO,U --right RHO,U --cells N --time T
  *                      [--flux godunov|hll|rusanov] [--reconstruction none|minmod|mc] [--cfl K]
  *                      [--domain A:B] [--x0 X0] --output FILE.csv
  * Bad command lines and case files end with a one-line error and exit status 2; failed runs with
- * exit status 1. */
+ * exit status 1; a run stopped at time.max_steps with exit status 3 (CMN_EXIT_INCOMPLETE). */
+#include <errno.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <sabre/fv1d.h>
@@ -17,6 +19,9 @@ static const char usage[] =
     "       sabre-fv1d riemann --xi X --rho0 R --c0 C --left RHO,U --right RHO,U --cells N\n"
     "                  --time T [--flux godunov|hll|rusanov] [--reconstruction none|minmod|mc]\n"
     "                  [--cfl K] [--domain A:B] [--x0 X0] --output FILE.csv\n"
+    "       sabre-fv1d --version\n"
+    "Each option is given once (--set may repeat). 1 <= X <= 100. A CASE run stopped at\n"
+    "time.max_steps before time.end exits with status 3 (outputs complete up to there).\n"
     "See docs/fv1d.md for the case-file keys and the outputs.\n";
 
 static int choice_index(const char *const *names, const char *value) {
@@ -44,9 +49,13 @@ static int run_riemann(int argc, char **argv) {
     const char *flag = argv[k];
     if (strcmp(flag, "--help") == 0 || strcmp(flag, "-h") == 0) {
       fputs(usage, stdout);
-      return 0;
+      return cmn_stdout_status(0);
     }
     if (k + 1 >= argc) cmn_input_error("%s: missing value (see --help)", flag);
+    /* each option once: a second value would silently replace the first */
+    for (int j = 2; j < k; j += 2)
+      if (strcmp(argv[j], flag) == 0)
+        cmn_input_error("%s given twice: give each option once", flag);
     const char *v = argv[++k];
     if (strcmp(flag, "--xi") == 0)
       xi = parse_number(flag, v);
@@ -92,11 +101,18 @@ static int run_riemann(int argc, char **argv) {
     cmn_input_error(
         "riemann: --xi, --rho0, --c0, --left, --right, --cells, --time and --output "
         "are required (see --help)");
-  if (rmn_eos_init(&p.eos, rho0, c0, xi) != RMN_SUCCESS)
-    cmn_input_error("riemann: need rho0 > 0, c0 > 0 and xi >= 1 (got %g, %g, %g)", rho0, c0, xi);
+  /* xi in [1, 100], as fluid.xi in a case file */
+  if (!(xi <= 100.0) || rmn_eos_init(&p.eos, rho0, c0, xi) != RMN_SUCCESS)
+    cmn_input_error("riemann: need rho0 > 0, c0 > 0 and 1 <= xi <= 100 (got %g, %g, %g)", rho0, c0,
+                    xi);
   if (!(t_end > 0.0)) cmn_input_error("--time: must be positive, got %g", t_end);
   if (!(cfl > 0.0 && cfl <= 2.0)) cmn_input_error("--cfl: must lie in (0, 2], got %g", cfl);
   if (!(b > a)) cmn_input_error("--domain: B must exceed A (got %g:%g)", a, b);
+  if (cfl > 1.0)
+    cmn_warning(
+        "--cfl %g: beyond 1 the fixed explicit step is unstable for every flux; expect a "
+        "blow-up, or use --cfl <= 1",
+        cfl);
   p.x_min = a, p.x_max = b, p.cells = cells, p.cfl = cfl, p.t_end = t_end, p.progress = 0;
   struct fv1d_region regions[2] = {{-INFINITY, x0, left[0], left[1]},
                                    {x0, INFINITY, right[0], right[1]}};
@@ -108,7 +124,8 @@ static int run_riemann(int argc, char **argv) {
   struct fv1d_solver *s = fv1d_solver_create(&p);
   struct fv1d_stats stats;
   if (fv1d_integrate(s, NULL, NULL, &stats) != 0) cmn_error("run failed: %s", fv1d_solver_error(s));
-  if (fv1d_output_profile(s, output) != 0) cmn_error("cannot write '%s'", output);
+  if (fv1d_output_profile(s, output) != 0)
+    cmn_error("cannot write '%s': %s", output, strerror(errno));
   fv1d_solver_destroy(s);
   return 0;
 }
@@ -121,7 +138,8 @@ int main(int argc, char **argv) {
   const char *quiet = NULL;
   const struct cmn_cli_option options[] = {{"--quiet", &quiet, 1}};
   struct cmn_cli cli;
-  if (cmn_cli_parse(&cli, argc, argv, NULL, usage, "fv1d-output", options, 1)) return 0;
+  if (cmn_cli_parse(&cli, argc, argv, NULL, usage, "fv1d-output", options, 1))
+    return cmn_stdout_status(0); /* --help or --version */
   const char *case_path = cli.case_path, *output = cli.output;
   struct cmn_case *c = cmn_cli_load(&cli);
   char base_dir[4096];
@@ -143,7 +161,9 @@ int main(int argc, char **argv) {
   int status = fv1d_integrate(s, fv1d_output_observer, out, &stats);
   if (fv1d_output_close(out, &stats, status) != 0)
     cmn_error("cannot write the outputs in '%s'", output);
-  if (status != 0) cmn_error("run failed: %s", fv1d_solver_error(s));
+  if (status < 0) cmn_error("run failed: %s", fv1d_solver_error(s));
+  if (status > 0) /* time.max_steps: outputs complete up to the time reached */
+    cmn_message("%s; outputs up to that time in %s", fv1d_solver_error(s), output);
   if (!quiet)
     cmn_message(
         "%ld steps, %ld RHS evaluations, %.3g s wall, %.3g cell updates/s per stage; "
@@ -154,5 +174,5 @@ int main(int argc, char **argv) {
   fv1d_solver_destroy(s);
   fv1d_params_free(&p);
   cmn_case_free(c);
-  return 0;
+  return status > 0 ? CMN_EXIT_INCOMPLETE : 0;
 }

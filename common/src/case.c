@@ -1077,6 +1077,53 @@ int cmn_case_check_unused(struct cmn_case *c) {
  * Writing used_case.yaml
  * ------------------------------------------------------------------------------------------- */
 
+/* ---------------------------------------------------------------------------------------------
+ * Digest
+ * ------------------------------------------------------------------------------------------- */
+static unsigned long long fnv(unsigned long long h, const void *data, size_t len) {
+  const unsigned char *b = data;
+  for (size_t i = 0; i < len; ++i) h = (h ^ b[i]) * 1099511628211ULL;
+  return h;
+}
+
+static unsigned long long digest_node(unsigned long long h, const struct cmn_node *n) {
+  unsigned char kind = (unsigned char)n->kind;
+  h = fnv(h, &kind, 1);
+  if (n->kind == NODE_SCALAR) {
+    double x;
+    if (!n->quoted && cmn_parse_double(n->value, &x) == 0) {
+      x = x == 0.0 ? 0.0 : x; /* -0 reads as 0 */
+      unsigned char tag = 'n';
+      h = fnv(fnv(h, &tag, 1), &x, sizeof x);
+    } else {
+      h = fnv(h, n->value, strlen(n->value) + 1);
+    }
+    return h;
+  }
+  for (int i = 0; i < n->n; ++i) {
+    if (n->kind == NODE_MAP) h = fnv(h, n->items[i]->key, strlen(n->items[i]->key) + 1);
+    h = digest_node(h, n->items[i]);
+  }
+  unsigned char end = 0xff;
+  return fnv(h, &end, 1);
+}
+
+unsigned long long cmn_case_digest(const struct cmn_case *c, const char *path) {
+  const struct cmn_node *n = path[0] ? find(c, path) : c->root;
+  if (n == NULL) return 0;
+  unsigned long long h = digest_node(14695981039346656037ULL, n);
+  return h ? h : 1;
+}
+
+int cmn_case_top_count(const struct cmn_case *c) {
+  return c->root->kind == NODE_MAP ? c->root->n : 0;
+}
+
+const char *cmn_case_top_key(const struct cmn_case *c, int i) {
+  if (c->root->kind != NODE_MAP || i < 0 || i >= c->root->n) return NULL;
+  return c->root->items[i]->key;
+}
+
 struct sink {
   FILE *out;
   int failed;

@@ -1,5 +1,6 @@
 /* Command lines of the case-file programs (common.h, "Command lines"): parsing, loading the case
  * with its --set overrides, and the run directory with used_case.yaml. */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,14 +27,19 @@ int cmn_cli_parse(struct cmn_cli *cli, int argc, char **argv, const char *comman
   memset(cli, 0, sizeof *cli);
   cli->command = command;
   cli->output = default_output;
+  int *given = cmn_calloc((size_t)noptions + 1, sizeof *given); /* options, then --output */
   /* At most one --set per two arguments: argc entries are plenty. */
   cli->sets = cmn_malloc((size_t)(argc > 0 ? argc : 1) * sizeof *cli->sets);
   for (int k = 1; k < argc; k++) {
     const char *a = argv[k];
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0 || strcmp(a, "--version") == 0) {
+      if (a[2] == 'v')
+        cmn_print_version();
+      else
+        fputs(usage, stdout);
       free(cli->sets);
       cli->sets = NULL;
+      free(given);
       return 1;
     }
     const char **slot = NULL;
@@ -45,6 +51,15 @@ int cmn_cli_parse(struct cmn_cli *cli, int argc, char **argv, const char *comman
     else
       for (int e = 0; e < noptions && opt == NULL; e++)
         if (strcmp(a, options[e].name) == 0) opt = &options[e];
+    /* Each option once: a second value would silently replace the first. */
+    if (opt != NULL || slot == &cli->output) {
+      int *seen = opt != NULL ? &given[opt - options] : &given[noptions];
+      if (*seen) {
+        free(given);
+        cli_error(cli, "%s given twice: give each option once", a);
+      }
+      *seen = 1;
+    }
     if (opt != NULL && opt->flag) {
       *opt->value = opt->name;
       continue;
@@ -62,6 +77,7 @@ int cmn_cli_parse(struct cmn_cli *cli, int argc, char **argv, const char *comman
       cli_error(cli, "one case file only ('%s' and '%s')", cli->case_path, a);
     }
   }
+  free(given);
   if (cli->case_path == NULL) cli_error(cli, "missing case file (see --help)");
   return 0;
 }
@@ -79,10 +95,13 @@ struct cmn_case *cmn_cli_load(struct cmn_cli *cli) {
 }
 
 void cmn_cli_write_used(const struct cmn_case *c, const char *dir) {
-  if (cmn_mkdir_p(dir) != 0) cmn_input_error("cannot create the output directory '%s'", dir);
+  if (cmn_mkdir_p(dir) != 0)
+    cmn_input_error("cannot create the output directory '%s': %s", dir, strerror(errno));
   size_t len = strlen(dir) + sizeof "/used_case.yaml";
   char *path = cmn_malloc(len);
   snprintf(path, len, "%s/used_case.yaml", dir);
-  if (cmn_case_write_file(c, path) != 0) cmn_input_error("cannot write '%s'", path);
+  errno = 0;
+  if (cmn_case_write_file(c, path) != 0)
+    cmn_input_error("cannot write '%s': %s", path, errno ? strerror(errno) : "write error");
   free(path);
 }

@@ -24,6 +24,22 @@ void cmn_set_program_name(const char *name) {
   snprintf(program_name, sizeof program_name, "%s", name);
 }
 
+const char *cmn_program_name(void) { return program_name; }
+
+void cmn_print_version(void) { printf("%s %s\n", program_name, SABRE_VERSION); }
+
+int cmn_stdout_status(int status) {
+  static int reported = 0; /* one message, however many callers check */
+  errno = 0;
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    if (reported++) return CMN_EXIT_FAILURE;
+    fprintf(stderr, "%s: error: cannot write the output: %s\n", program_name,
+            errno ? strerror(errno) : "write error");
+    return CMN_EXIT_FAILURE;
+  }
+  return status;
+}
+
 static void vreport(const char *kind, const char *fmt, va_list ap) {
   /* One fprintf per line would interleave with other threads' output less than several. */
   char buf[4096];

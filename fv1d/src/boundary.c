@@ -1,5 +1,6 @@
 /* Open ends: the imposed signals and the face flux F(U_s) from the riemann/ boundary solver
- * (J §III, THEORY §1.1), evaluated at every right-hand side so that each RK stage is consistent. */
+ * (J §III, docs/theory.md §1.1), evaluated at every right-hand side so that each RK stage is
+ * consistent. */
 #include <math.h>
 
 #include "internal.h"

@@ -336,6 +336,11 @@ static int read_time(struct cmn_case *c, struct fv1d_params *p) {
   TRY(cmn_case_opt_double(c, "time.rtol", 1e-6, 1e-14, 1.0, &p->rtol));
   TRY(cmn_case_opt_double(c, "time.atol", 1e-9, 1e-300, 1.0, &p->atol));
   TRY(cmn_case_opt_long(c, "time.max_steps", 100000000L, 1, 1000000000000L, &p->max_steps));
+  if (!p->adaptive && p->cfl > 1.0)
+    cmn_warning(
+        "%s:%d: time.cfl = %g with the fixed step: beyond 1 the explicit step is unstable "
+        "for every flux (docs/fv1d.md section 3); expect a blow-up, or use time.cfl <= 1",
+        cmn_case_name(c), cmn_case_line(c, "time.cfl"), p->cfl);
   char err[256];
   if (strlen(method) >= sizeof p->method) return cmn_case_fail(c, "time.method", "name too long");
   if (fv1d_method_check(method, p->adaptive, err, sizeof err) != 0)

@@ -1,5 +1,5 @@
-/* Numerical fluxes at cell faces (THEORY §2): exact Godunov through riemann/, HLL, Rusanov; and
- * the energy bookkeeping of the barotropic system. */
+/* Numerical fluxes at cell faces (docs/theory.md §2): exact Godunov through riemann/, HLL, Rusanov;
+ * and the energy bookkeeping of the barotropic system. */
 #include <math.h>
 
 #include "internal.h"

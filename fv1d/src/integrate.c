@@ -1,6 +1,6 @@
-/* Method of lines with SUNDIALS ARKODE ERKStep (THEORY §2): an SSP-RK3 (Shu–Osher) Butcher table
- * through ERKStepSetTable by default, or any ARKODE ERK table by name; a fixed CFL step chosen
- * before every step, or ARKODE's error control with the CFL step as stability bound. */
+/* Method of lines with SUNDIALS ARKODE ERKStep (docs/theory.md §2): an SSP-RK3 (Shu–Osher) Butcher
+ * table through ERKStepSetTable by default, or any ARKODE ERK table by name; a fixed CFL step
+ * chosen before every step, or ARKODE's error control with the CFL step as stability bound. */
 #include <arkode/arkode_erkstep.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -200,8 +200,10 @@ int fv1d_integrate(struct fv1d_solver *s, fv1d_observer_fn observer, void *user,
         FV1D_SUNCHECK(s, ERKStepSetFixedStep(mem, dt));
       }
       if (step >= p->max_steps) {
-        fv1d_set_error(s, "t = %.9g s: reached time.max_steps = %ld", s->t, p->max_steps);
-        goto fail;
+        fv1d_set_error(s, "time.max_steps = %ld reached at t = %.9g s, before time.end",
+                       p->max_steps, s->t);
+        result = 1;
+        goto done;
       }
       double tret = s->t;
       FV1D_SUNCHECK(s, ERKStepEvolve(mem, tout, y, &tret, ARK_ONE_STEP));

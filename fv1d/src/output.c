@@ -144,7 +144,10 @@ int fv1d_output_close(struct fv1d_output *out, const struct fv1d_stats *stats, i
   } else {
     const double *r = out->row;
     fprintf(f, "# sabre-fv1d run summary\n");
-    fprintf(f, "status: %s\n", status == 0 ? "success" : "failure");
+    fprintf(f, "status: %s\n",
+            status == 0   ? "success"
+            : status == 1 ? "stopped at time.max_steps"
+                          : "failure");
     fprintf(f, "final_time: %.17g  # s\n", r[0]);
     fprintf(f, "steps: %ld\n", stats->steps);
     fprintf(f, "rhs_evaluations: %ld\n", stats->rhs_evals);

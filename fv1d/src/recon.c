@@ -1,5 +1,5 @@
 /* MUSCL reconstruction on the primitive variables (ρ, u): ghost cells from the boundary types and
- * limited slopes (minmod, monotonised central). THEORY §2. */
+ * limited slopes (minmod, monotonised central). docs/theory.md §2. */
 #include <math.h>
 
 #include "internal.h"

@@ -1,5 +1,6 @@
-/* The semi-discrete right-hand side of THEORY §2: primitives, ghosts, limited slopes, face fluxes
- * (interior: numerical flux; ends: wall, periodic, transmissive or open), flux differences. */
+/* The semi-discrete right-hand side of docs/theory.md §2: primitives, ghosts, limited slopes, face
+ * fluxes (interior: numerical flux; ends: wall, periodic, transmissive or open), flux differences.
+ */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>

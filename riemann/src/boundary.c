@@ -1,5 +1,5 @@
-/* The boundary (partial) Riemann problem, J §III and THEORY §1.1: the segment state ("state 2")
- * is linked to the interior across the λ+1 wave only; one quantity is imposed. */
+/* The boundary (partial) Riemann problem, J §III and docs/theory.md §1.1: the segment state ("state
+ * 2") is linked to the interior across the λ+1 wave only; one quantity is imposed. */
 #include <float.h>
 #include <math.h>
 

@@ -1,8 +1,8 @@
-/* Exact two-wave Riemann solver of the barotropic Euler equations (THEORY §1.2), with dry states
- * and vacuum generation. The star density solves f_L(ρ*) + f_R(ρ*) + u_R − u_L = 0 with
- * f_K = ψ(ρ) − ψ(ρ_K) (rarefaction, ρ ≤ ρ_K) or sqrt((p − p_K)(ρ − ρ_K)/(ρ ρ_K)) (shock);
- * f is increasing, so the root is bracketed from the data and found by GSL's Newton solver inside
- * the bracket, with GSL's Brent solver as fallback. */
+/* Exact two-wave Riemann solver of the barotropic Euler equations (docs/theory.md §1.2), with dry
+ * states and vacuum generation. The star density solves f_L(ρ*) + f_R(ρ*) + u_R − u_L = 0 with f_K
+ * = ψ(ρ) − ψ(ρ_K) (rarefaction, ρ ≤ ρ_K) or sqrt((p − p_K)(ρ − ρ_K)/(ρ ρ_K)) (shock); f is
+ * increasing, so the root is bracketed from the data and found by GSL's Newton solver inside the
+ * bracket, with GSL's Brent solver as fallback. */
 #include <math.h>
 
 #include "sabre/riemann.h"

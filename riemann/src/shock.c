@@ -1,6 +1,6 @@
-/* Moving-shock Rankine–Hugoniot relations across the λ+1 wave (THEORY §1.1, beyond J 31–32):
- *   ρ2 (u2 − S) = ρ_i (u_i − S),   ρ2 u2 (u2 − S) + p2 = ρ_i u_i (u_i − S) + p_i,
- * solved by Newton through GSL multiroot with the analytic Jacobian, plus the solver workspace. */
+/* Moving-shock Rankine–Hugoniot relations across the λ+1 wave (docs/theory.md §1.1, beyond J
+ * 31–32): ρ2 (u2 − S) = ρ_i (u_i − S),   ρ2 u2 (u2 − S) + p2 = ρ_i u_i (u_i − S) + p_i, solved by
+ * Newton through GSL multiroot with the analytic Jacobian, plus the solver workspace. */
 #include <math.h>
 #include <stdlib.h>
 

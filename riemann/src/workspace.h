@@ -7,7 +7,7 @@
 
 #include "sabre/riemann.h"
 
-/* Data of the moving-shock Rankine–Hugoniot system (THEORY §1.1). */
+/* Data of the moving-shock Rankine–Hugoniot system (docs/theory.md §1.1). */
 struct rmn_rh_data {
   const struct rmn_eos *eos;
   double rho_i; /* density ahead of the shock (interior) */

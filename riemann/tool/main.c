@@ -8,8 +8,9 @@
  *   sabre-riemann sweep --xi X --rho0 R --c0 C --rho-int R --un-int A:B:N
  *                       (--pressure A:B:N | --velocity A:B:N) [--shock exact|linearised]
  *
- * The interface is public and stable. Bad input: one line on stderr, exit 2. Solver failure
- * (non-convergence): exit 1. This tool depends on the riemann/ library only.
+ * and `sabre-riemann --version`; --help after any command prints the usage. The interface is public
+ * and stable. Bad input (including a repeated option): one line on stderr, exit 2. Solver failure
+ * (non-convergence) or an output error: exit 1. This tool depends on the riemann/ library only.
  */
 #include <errno.h>
 #include <gsl/gsl_errno.h>
@@ -35,8 +36,9 @@ static _Noreturn __attribute__((format(printf, 1, 2))) void die_input(const char
 }
 
 static _Noreturn void die_status(const char *what, int status) {
-  fprintf(stderr, "sabre-riemann: error: %s: %s (%s)\n", what, rmn_strerror(status),
-          rmn_status_name(status));
+  fprintf(stderr, "sabre-riemann: error: %s: %s (%s)%s\n", what, rmn_strerror(status),
+          rmn_status_name(status),
+          status == RMN_ENOCONV ? "; a very strong shock? try --max-iter or a weaker jump" : "");
   exit(status == RMN_ENOCONV || status == RMN_ENOMEM ? EXIT_FAILURE : EXIT_INPUT);
 }
 
@@ -49,21 +51,39 @@ static double parse_number(const char *flag, const char *text) {
   return v;
 }
 
-/* Comma-separated list of between lo and hi numbers; returns the count. */
+/* Comma-separated list of between lo and hi numbers; returns the count. Every item must be a
+ * number: "1000,,5" is an error, not the list 1000,5. */
 static int parse_list(const char *flag, const char *text, double *v, int lo, int hi) {
   char buf[512];
   if (strlen(text) >= sizeof buf) die_input("%s: value too long", flag);
   strcpy(buf, text);
   int n = 0;
-  char *save = NULL;
-  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+  for (char *tok = buf;;) {
+    char *comma = strchr(tok, ',');
+    if (comma) *comma = '\0';
+    if (*tok == '\0')
+      die_input("%s: empty item in '%s' (expected %d to %d comma-separated numbers)", flag, text,
+                lo, hi);
     if (n == hi)
       die_input("%s: expected at most %d comma-separated numbers, got '%s'", flag, hi, text);
     v[n++] = parse_number(flag, tok);
+    if (!comma) break;
+    tok = comma + 1;
   }
-  if (n < lo || text[0] == ',' || text[strlen(text) - 1] == ',')
+  if (n < lo)
     die_input("%s: expected %d to %d comma-separated numbers, got '%s'", flag, lo, hi, text);
   return n;
+}
+
+/* Every option may be given once (except --at): a repeated option is an error rather than a
+ * silent override of the first value. */
+static void check_once(const char *flag) {
+  static const char *seen[64];
+  static int nseen = 0;
+  if (!strcmp(flag, "--at")) return;
+  for (int k = 0; k < nseen; ++k)
+    if (!strcmp(seen[k], flag)) die_input("%s given twice: give each option once", flag);
+  if (nseen < 64) seen[nseen++] = flag;
 }
 
 /* A:B:N range with N ≥ 1 points (N = 1 gives A). */
@@ -108,6 +128,7 @@ struct options {
 };
 
 static const char *need_value(int argc, char **argv, int *i) {
+  check_once(argv[*i]);
   if (*i + 1 >= argc) die_input("%s: missing value", argv[*i]);
   return argv[++*i];
 }
@@ -148,7 +169,8 @@ static struct rmn_eos make_eos(const struct options *o) {
   if (!o->have_xi) die_input("missing --xi (Tait exponent, >= 1)");
   if (!o->have_rho0) die_input("missing --rho0 (reference density, kg/m^3, > 0)");
   if (!o->have_c0) die_input("missing --c0 (reference sound speed, m/s, > 0)");
-  if (o->xi < 1.0) die_input("--xi: expected a number >= 1, got %g", o->xi);
+  /* The range of fv1d's and sph's fluid.xi: beyond 100 the EOS is stiffer than any liquid. */
+  if (o->xi < 1.0 || o->xi > 100.0) die_input("--xi: expected a number in [1, 100], got %g", o->xi);
   if (o->rho0 <= 0.0) die_input("--rho0: expected a number > 0, got %g", o->rho0);
   if (o->c0 <= 0.0) die_input("--c0: expected a number > 0, got %g", o->c0);
   if (rmn_params_check(&o->params) != RMN_SUCCESS)
@@ -156,6 +178,33 @@ static struct rmn_eos make_eos(const struct options *o) {
   struct rmn_eos eos;
   rmn_eos_init(&eos, o->rho0, o->c0, o->xi);
   return eos;
+}
+
+/*
+ * Bounds of the data (input errors, exit 2): densities up to RHO_MAX_RATIO ρ0, speeds up to
+ * U_MAX_RATIO c0, imposed pressures up to p(RHO_MAX_RATIO ρ0). Far beyond any weakly-compressible
+ * flow, and inside the range where the solvers converge, so that a solver failure (exit 1) is
+ * never the answer to a typo such as --pressure 1e300.
+ */
+#define RHO_MAX_RATIO 100.0
+#define U_MAX_RATIO 100.0
+
+static void check_density(const struct rmn_eos *eos, const char *flag, double rho) {
+  if (rho > RHO_MAX_RATIO * eos->rho0)
+    die_input("%s: density %g kg/m^3 is beyond %g rho0 = %g kg/m^3", flag, rho, RHO_MAX_RATIO,
+              RHO_MAX_RATIO * eos->rho0);
+}
+
+static void check_velocity(const struct rmn_eos *eos, const char *flag, double u) {
+  if (fabs(u) > U_MAX_RATIO * eos->c0)
+    die_input("%s: velocity %g m/s is beyond %g c0 = %g m/s in magnitude", flag, u, U_MAX_RATIO,
+              U_MAX_RATIO * eos->c0);
+}
+
+static void check_pressure(const struct rmn_eos *eos, const char *flag, double p) {
+  double pmax = rmn_eos_pressure(eos, RHO_MAX_RATIO * eos->rho0);
+  if (p > pmax)
+    die_input("%s: pressure %g Pa is beyond p(%g rho0) = %g Pa", flag, p, RHO_MAX_RATIO, pmax);
 }
 
 static _Noreturn void unknown(const char *cmd, const char *flag) {
@@ -188,6 +237,13 @@ static int cmd_boundary(int argc, char **argv, struct options *o) {
     die_input("--tangential: expected %d value(s) for a %dD interior state, got %d", dim - 1, dim,
               n_tangential);
   if (interior[0] <= 0.0) die_input("--interior: density must be > 0, got %g", interior[0]);
+  check_density(&eos, "--interior", interior[0]);
+  for (int k = 1; k < n_interior; ++k) check_velocity(&eos, "--interior", interior[k]);
+  for (int k = 0; k < n_tangential; ++k) check_velocity(&eos, "--tangential", tangential[k]);
+  if (imposed == RMN_IMPOSE_PRESSURE)
+    check_pressure(&eos, "--pressure", value);
+  else
+    check_velocity(&eos, "--velocity", value);
 
   /* The normal is the x axis, so local (n, t1, t2) components are the given ones. */
   struct rmn_boundary_input in = {.normal = {1.0, 0.0, 0.0},
@@ -246,6 +302,10 @@ static int cmd_exact(int argc, char **argv, struct options *o) {
   if (left[0] < 0.0 || right[0] < 0.0)
     die_input("exact: densities must be >= 0 (0 is a dry state)");
   if (left[0] == 0.0 && right[0] == 0.0) die_input("exact: both states are dry");
+  check_density(&eos, "--left", left[0]);
+  check_density(&eos, "--right", right[0]);
+  check_velocity(&eos, "--left", left[1]);
+  check_velocity(&eos, "--right", right[1]);
   struct rmn_workspace *ws = rmn_workspace_alloc();
   if (!ws) die_status("workspace", RMN_ENOMEM);
   struct rmn_exact sol;
@@ -311,6 +371,16 @@ static int cmd_sweep(int argc, char **argv, struct options *o) {
   if (!have_un) die_input("sweep: missing --un-int A:B:N");
   if (imposed < 0) die_input("sweep: give one of --pressure A:B:N or --velocity A:B:N");
   if (un.n * val.n > 10000000L) die_input("sweep: at most 1e7 grid points");
+  check_density(&eos, "--rho-int", rho_int);
+  check_velocity(&eos, "--un-int", un.a);
+  check_velocity(&eos, "--un-int", un.b);
+  if (imposed == RMN_IMPOSE_PRESSURE) {
+    check_pressure(&eos, "--pressure", val.a);
+    check_pressure(&eos, "--pressure", val.b);
+  } else {
+    check_velocity(&eos, "--velocity", val.a);
+    check_velocity(&eos, "--velocity", val.b);
+  }
   struct rmn_workspace *ws = rmn_workspace_alloc();
   if (!ws) die_status("workspace", RMN_ENOMEM);
   printf("imposed,value,rho_int,un_int,status,wave,flow,rho,p,un,shock_speed\n");
@@ -330,10 +400,6 @@ static int cmd_sweep(int argc, char **argv, struct options *o) {
     }
   }
   rmn_workspace_free(ws);
-  if (fflush(stdout) != 0 || ferror(stdout)) {
-    fprintf(stderr, "sabre-riemann: error: writing the sweep failed\n");
-    return EXIT_FAILURE;
-  }
   return 0;
 }
 
@@ -346,9 +412,28 @@ static void usage(FILE *out) {
       "  sabre-riemann exact --xi X --rho0 R --c0 C --left RHO,U --right RHO,U [--at S]...\n"
       "  sabre-riemann sweep --xi X --rho0 R --c0 C --rho-int RHO --un-int A:B:N\n"
       "                      (--pressure A:B:N | --velocity A:B:N) [--shock exact|linearised]\n"
+      "  sabre-riemann --version\n"
+      "Each option is given once (--at may repeat). Limits: 1 <= X <= 100; densities up to\n"
+      "100 R, speeds up to 100 C in magnitude, imposed pressures up to p(100 R).\n"
       "Units: SI (kg/m^3, m/s, Pa relative to p(rho0) = 0). The boundary normal points into the\n"
       "fluid; UN > 0 is inflow. See docs/riemann.md.\n",
       out);
+}
+
+/* Output errors (a full disk, a closed pipe, `> /dev/full`) are failures: exit 1, one line. */
+static int finish_stdout(int status) {
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "sabre-riemann: error: cannot write the output: %s\n", strerror(errno));
+    return EXIT_FAILURE;
+  }
+  return status;
+}
+
+/* --help (or -h) anywhere after the command prints the usage; 1 if it was given. */
+static int wants_help(int argc, char **argv) {
+  for (int i = 2; i < argc; ++i)
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return 1;
+  return 0;
 }
 
 int main(int argc, char **argv) {
@@ -356,12 +441,22 @@ int main(int argc, char **argv) {
   if (argc < 2) die_input("missing command: boundary, exact or sweep (see sabre-riemann --help)");
   if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     usage(stdout);
-    return 0;
+    return finish_stdout(0);
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("sabre-riemann %s\n", SABRE_VERSION);
+    return finish_stdout(0);
   }
   struct options o = {0};
   rmn_params_default(&o.params);
-  if (!strcmp(argv[1], "boundary")) return cmd_boundary(argc, argv, &o);
-  if (!strcmp(argv[1], "exact")) return cmd_exact(argc, argv, &o);
-  if (!strcmp(argv[1], "sweep")) return cmd_sweep(argc, argv, &o);
-  die_input("unknown command '%s' (expected boundary, exact or sweep)", argv[1]);
+  int (*cmd)(int, char **, struct options *) = NULL;
+  if (!strcmp(argv[1], "boundary")) cmd = cmd_boundary;
+  if (!strcmp(argv[1], "exact")) cmd = cmd_exact;
+  if (!strcmp(argv[1], "sweep")) cmd = cmd_sweep;
+  if (!cmd) die_input("unknown command '%s' (expected boundary, exact or sweep)", argv[1]);
+  if (wants_help(argc, argv)) {
+    usage(stdout);
+    return finish_stdout(0);
+  }
+  return finish_stdout(cmd(argc, argv, &o));
 }

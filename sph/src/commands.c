@@ -1,5 +1,6 @@
 /* The subcommands of sabre-sph that inspect a geometry (`gamma`, `mesh`); see sph/main.c and
  * docs/sph-geometry.md §6. argv[0] is the command's name; bad input exits with CMN_EXIT_INPUT. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,11 +14,13 @@
 void sph_cmd_usage(FILE *out) {
   fprintf(
       out,
-      "usage: sabre-sph <command> [options]\n"
+      "usage: sabre-sph <command> [options]     (sabre-sph <command> --help for one command)\n"
+      "       sabre-sph --version\n"
       "\n"
       "commands:\n"
       "  run CASE.yaml [--output DIR] [--set key=value ...] [--restart FILE] [--threads N]\n"
-      "      Run the simulation of a case (sabre-sph run --help for details).\n"
+      "      Run the simulation of a case (sabre-sph run --help for details). One thread unless\n"
+      "      --threads N (or OMP_NUM_THREADS) asks for more.\n"
       "  gamma --dim D --dr DR --h-over-dr K [--box LO:HI] [--stl FILE [--stl-fluid inside|"
       "outside]]\n"
       "        --at X[,Y[,Z]] [--at ...]\n"
@@ -216,7 +219,7 @@ int sph_cmd_gamma(int argc, char **argv) {
   free(at);
   sph_system_free(&walls);
   sph_mesh_free(&m);
-  return fflush(stdout) == 0 ? 0 : CMN_EXIT_FAILURE;
+  return cmn_stdout_status(0);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -231,7 +234,8 @@ static const char mesh_usage[] =
 
 int sph_cmd_mesh(int argc, char **argv) {
   struct cmn_cli cli;
-  if (cmn_cli_parse(&cli, argc, argv, argv[0], mesh_usage, NULL, NULL, 0)) return 0;
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], mesh_usage, NULL, NULL, 0))
+    return cmn_stdout_status(0);
   /* No default run directory: mesh output is asked for, not a by-product. */
   if (cli.output == NULL) cmn_input_error("%s: --output DIR is required (see --help)", argv[0]);
   const char *outdir = cli.output;
@@ -252,8 +256,10 @@ int sph_cmd_mesh(int argc, char **argv) {
   compute_gamma(&s, &kern);
 
   struct sph_output out;
+  errno = 0;
   if (sph_output_open(&out, outdir, "mesh") || sph_output_write(&out, &s, 0.0))
-    cmn_error("cannot write VTU output in '%s'", outdir);
+    cmn_input_error("cannot write the VTU output in '%s': %s", outdir,
+                    errno ? strerror(errno) : "write error");
   sph_output_close(&out);
 
   double gmin[2] = {INFINITY, INFINITY}, gmax[2] = {-INFINITY, -INFINITY};

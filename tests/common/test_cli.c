@@ -39,13 +39,13 @@ static int argc_of(char **argv) {
 static void test_parse(void **state) {
   (void)state;
   threads = restart = quiet = NULL;
-  char *argv[] = {"run", "--set",   "a=1",   "case.yaml",  "--threads", "4",  "--output",
-                  "o1",  "--quiet", "--set", "b.c=[1, 2]", "--output",  "o2", NULL};
+  char *argv[] = {"run",     "--set", "a=1",        "case.yaml", "--threads", "4",
+                  "--quiet", "--set", "b.c=[1, 2]", "--output",  "o2",        NULL};
   struct cmn_cli cli;
   assert_int_equal(cmn_cli_parse(&cli, argc_of(argv), argv, "run", usage, "def", options, 3), 0);
   assert_string_equal(cli.command, "run");
   assert_string_equal(cli.case_path, "case.yaml");
-  assert_string_equal(cli.output, "o2"); /* the last --output wins */
+  assert_string_equal(cli.output, "o2");
   assert_int_equal(cli.nsets, 2);
   assert_string_equal(cli.sets[0], "a=1");
   assert_string_equal(cli.sets[1], "b.c=[1, 2]");
@@ -118,6 +118,16 @@ static void test_parse_errors(void **state) {
        "run: one case file only ('a.yaml' and 'b.yaml')"},
       {"run", {"run"}, "run: missing case file (see --help)"},
       {NULL, {"fv1d", "--quiet", "--set", "a=1"}, "missing case file (see --help)"},
+      /* each option once (--set may repeat): no silent override */
+      {"run",
+       {"run", "c.yaml", "--output", "o1", "--output", "o2"},
+       "run: --output given twice: give each option once"},
+      {"run",
+       {"run", "c.yaml", "--threads", "1", "--threads", "2"},
+       "run: --threads given twice: give each option once"},
+      {NULL,
+       {"fv1d", "c.yaml", "--quiet", "--quiet"},
+       "--quiet given twice: give each option once"},
       /* an option's value is not the case file */
       {"run", {"run", "--threads", "c.yaml"}, "run: missing case file (see --help)"},
   };
@@ -244,7 +254,8 @@ static void test_write_errors(void **state) {
   snprintf(dir, sizeof dir, "%s/sub", case_path);
   write_dir = dir;
   assert_int_equal(sabre_run_child(write_body, out, sizeof out), CMN_EXIT_INPUT);
-  snprintf(want, sizeof want, "sabre-test: error: cannot create the output directory '%s'\n", dir);
+  snprintf(want, sizeof want,
+           "sabre-test: error: cannot create the output directory '%s': Not a directory\n", dir);
   assert_string_equal(out, want);
   /* A directory stands where used_case.yaml should be. */
   char blocker[400];
@@ -252,7 +263,7 @@ static void test_write_errors(void **state) {
   snprintf(blocker, sizeof blocker, "%s/used_case.yaml", dir);
   assert_int_equal(cmn_mkdir_p(blocker), 0);
   assert_int_equal(sabre_run_child(write_body, out, sizeof out), CMN_EXIT_INPUT);
-  snprintf(want, sizeof want, "sabre-test: error: cannot write '%s'\n", blocker);
+  snprintf(want, sizeof want, "sabre-test: error: cannot write '%s': Is a directory\n", blocker);
   assert_string_equal(out, want);
   rmdir(blocker);
   rmdir(dir);

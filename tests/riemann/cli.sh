@@ -84,6 +84,33 @@ error_check exact "${W[@]}" --left 1000 --right 1000,0
 error_check exact "${W[@]}" --left -1,0 --right 1000,0
 error_check sweep "${W[@]}" --rho-int 1000 --un-int 0:1 --pressure 0:1:2
 error_check sweep "${W[@]}" --rho-int 1000 --un-int 0:1:0 --pressure 0:1:2
+# strict input: empty list items, repeated options, xi beyond fv1d's range, absurd magnitudes
+# are input errors (exit 2), never read loosely nor reported as solver failures
+error_check boundary "${W[@]}" --interior 1000,,5 --pressure 0
+error_check boundary "${W[@]}" --interior ,1000,5 --pressure 0
+error_check boundary "${W[@]}" --interior 1000,0 --pressure 0 --xi 7
+error_check boundary "${W[@]}" --interior 1000,0 --interior 1000,1 --pressure 0
+error_check exact "${W[@]}" --left 1000,0 --right 1000,0 --left 1000,1
+error_check boundary --xi 1e6 --rho0 1000 --c0 20 --interior 1000,0 --pressure 0
+error_check boundary "${W[@]}" --interior 1000,0 --pressure 1e300
+error_check boundary "${W[@]}" --interior 1e300,0 --pressure 0
+error_check boundary "${W[@]}" --interior 1000,0 --velocity 1e300
+error_check sweep "${W[@]}" --rho-int 1000 --un-int 0:1:2 --pressure 0:1e300:2
+# --help after a command and --version print on stdout, exit 0
+for c in boundary exact sweep; do
+  if "$tool" $c --help | grep -q "^usage:"; then ok; else bad "$c --help"; fi
+done
+if [ "$("$tool" --version)" = "sabre-riemann $("$tool" --version | cut -d' ' -f2)" ] \
+   && "$tool" --version | grep -Eq '^sabre-riemann [0-9]+\.[0-9]+\.[0-9]+$'; then ok; else bad "--version"; fi
+# a write error on stdout is a failure (exit 1), not a silent success
+if [ -w /dev/full ]; then
+  "$tool" boundary "${W[@]}" --interior 1000,0 --pressure 0 >/dev/full 2>/dev/null
+  rc=$?; [ $rc -eq 1 ] && ok || bad "boundary > /dev/full: exit $rc (want 1)"
+  "$tool" exact "${W[@]}" --left 1000,0 --right 1000,0 >/dev/full 2>/dev/null
+  rc=$?; [ $rc -eq 1 ] && ok || bad "exact > /dev/full: exit $rc (want 1)"
+  "$tool" --help >/dev/full 2>/dev/null
+  rc=$?; [ $rc -eq 1 ] && ok || bad "--help > /dev/full: exit $rc (want 1)"
+fi
 rm -f /tmp/cli_err.$$
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

@@ -1,6 +1,7 @@
-/* Boundary Riemann problem (J §III, THEORY §1.1): invariants on expansions, Rankine–Hugoniot and
- * Lax on shocks, Newton against the closed form, continuity at the expansion/shock switch,
- * consistency with the exact solver, tangential rules, batch, and every error code. */
+/* Boundary Riemann problem (J §III, docs/theory.md §1.1): invariants on expansions,
+ * Rankine–Hugoniot and Lax on shocks, Newton against the closed form, continuity at the
+ * expansion/shock switch, consistency with the exact solver, tangential rules, batch, and every
+ * error code. */
 #include <float.h>
 #include <gsl/gsl_errno.h>
 #include <math.h>

@@ -1,5 +1,5 @@
-/* Exact two-wave Riemann solver (THEORY §1.2): shallow-water closed forms for ξ = 2 (Ritter dry
- * bed, Stoker wet bed, computed here independently of the solver), Rankine–Hugoniot across
+/* Exact two-wave Riemann solver (docs/theory.md §1.2): shallow-water closed forms for ξ = 2 (Ritter
+ * dry bed, Stoker wet bed, computed here independently of the solver), Rankine–Hugoniot across
  * shocks, invariants across fans, mirror symmetry, vacuum, errors. */
 #include <float.h>
 #include <gsl/gsl_errno.h>

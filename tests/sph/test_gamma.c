@@ -1,8 +1,8 @@
 /*
- * γ_a and ∇γ_a, J(2)–J(4), against exact results (THEORY §3.1): far field, distance to a plane
- * (the cumulative kernel marginal), the solid-angle limit on walls, corners and edges, independence
- * of how a flat wall is cut, ∇γ_a = finite difference of γ_a, the dynamic form M(4), error codes.
- * Geometry is moved by random rigid motions so nothing relies on axis-aligned walls.
+ * γ_a and ∇γ_a, J(2)–J(4), against exact results (docs/theory.md §3.1): far field, distance to a
+ * plane (the cumulative kernel marginal), the solid-angle limit on walls, corners and edges,
+ * independence of how a flat wall is cut, ∇γ_a = finite difference of γ_a, the dynamic form M(4),
+ * error codes. Geometry is moved by random rigid motions so nothing relies on axis-aligned walls.
  */
 #include <math.h>
 #include <stdio.h>

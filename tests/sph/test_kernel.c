@@ -74,7 +74,7 @@ static void test_normalisation(void **state) {
   assert_rel(k.alpha, 21.0 / (16.0 * PI), 1e-15);
 }
 
-/* Point values against the monomial form of THEORY §3 and compact support. */
+/* Point values against the monomial form of docs/theory.md §3 and compact support. */
 static void test_values(void **state) {
   (void)state;
   struct sabre_rng rng;

@@ -1,8 +1,10 @@
 /*
  * Restart is bit-identical (same thread count): a run to time.end, and the same run stopped at
- * time.max_steps and continued with --restart, give byte-identical diagnostics.csv, probes.csv,
- * forces.csv and final checkpoint. Also the library level: N steps, or k steps + checkpoint write +
- * read into a fresh solver + N − k steps, give bitwise equal particle stores.
+ * time.max_steps (exit 3) and continued with --restart, give byte-identical diagnostics.csv,
+ * probes.csv, forces.csv, VTU files and final checkpoint; so does a run stopped by SIGTERM and
+ * restarted. A restart whose case differs outside `time` is refused. Also the library level: N
+ * steps, or k steps + checkpoint write + read into a fresh solver + N − k steps, give bitwise equal
+ * particle stores.
  */
 #define _POSIX_C_SOURCE 200809L /* fork, kill, nanosleep, mkdtemp */
 #include <signal.h>
@@ -83,7 +85,7 @@ static void same_file(const char *a, const char *b) {
 }
 
 static int run(const char *out, const char *set, const char *restart) {
-  char *argv[16];
+  char *argv[32];
   int argc = 0;
   argv[argc++] = "run";
   argv[argc++] = path("case.yaml", NULL);
@@ -92,9 +94,9 @@ static int run(const char *out, const char *set, const char *restart) {
   argv[argc++] = "--threads";
   argv[argc++] = "1";
   /* set: one or more "key=value" separated by ';' */
-  static char sets[4][256];
+  static char sets[8][256];
   int ns = 0;
-  for (const char *p = set; p && *p && ns < 4; ns++) {
+  for (const char *p = set; p && *p && ns < 8; ns++) {
     const char *e = strchr(p, ';');
     size_t len = e ? (size_t)(e - p) : strlen(p);
     snprintf(sets[ns], sizeof sets[ns], "%.*s", (int)len, p);
@@ -121,7 +123,8 @@ static void test_command_restart(void **state) {
   snprintf(a, sizeof a, "%s", path("full", NULL));
   snprintf(b, sizeof b, "%s", path("split", NULL));
   assert_int_equal(run(a, NULL, NULL), 0);
-  assert_int_equal(run(b, "time.max_steps=23", NULL), 0);
+  /* time.max_steps: stopped before time.end, exit 3 (as sabre-fv1d), checkpoint written */
+  assert_int_equal(run(b, "time.max_steps=23", NULL), CMN_EXIT_INCOMPLETE);
   char ck[700];
   snprintf(ck, sizeof ck, "%s/checkpoint.bin", b);
   assert_int_equal(run(b, NULL, ck), 0);
@@ -141,7 +144,7 @@ static void test_command_restart(void **state) {
   snprintf(fb, sizeof fb, "%s", path("flux_split", NULL));
   snprintf(fset, sizeof fset, "%s;time.max_steps=23", flux);
   assert_int_equal(run(fa, flux, NULL), 0);
-  assert_int_equal(run(fb, fset, NULL), 0);
+  assert_int_equal(run(fb, fset, NULL), CMN_EXIT_INCOMPLETE);
   snprintf(fck, sizeof fck, "%s/checkpoint.bin", fb);
   assert_int_equal(run(fb, flux, fck), 0);
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
@@ -152,12 +155,15 @@ static void test_command_restart(void **state) {
   }
 
   /* SIGTERM: the run writes a checkpoint and exits with 128 + 15; restarting it ends like the
-   * uninterrupted run. */
-  char c[600];
+   * uninterrupted run, byte for byte. */
+  const char *sig_set = "time.end=3;time.output_interval=0.5;gravity=[0, 0];initial.pressure=zero";
+  char c[600], cf[600];
   snprintf(c, sizeof c, "%s", path("signal", NULL));
+  snprintf(cf, sizeof cf, "%s", path("signal_full", NULL));
+  assert_int_equal(run(cf, sig_set, NULL), 0);
   pid_t pid = fork();
   assert_true(pid >= 0);
-  if (pid == 0) _exit(run(c, "time.end=1000;gravity=[0, 0];initial.pressure=zero", NULL));
+  if (pid == 0) _exit(run(c, sig_set, NULL));
   char ckc[700];
   snprintf(ckc, sizeof ckc, "%s/diagnostics.csv", c);
   for (int i = 0; i < 600 && access(ckc, F_OK) != 0; i++) sleep_ms(10);
@@ -169,13 +175,41 @@ static void test_command_restart(void **state) {
   assert_int_equal(WEXITSTATUS(status), 128 + SIGTERM);
   snprintf(ckc, sizeof ckc, "%s/checkpoint.bin", c);
   assert_int_equal(access(ckc, F_OK), 0);
-  /* The run really was split: a restart of the final checkpoint does nothing more. */
+  assert_int_equal(run(c, sig_set, ckc), 0);
+  const char *sig_files[] = {"diagnostics.csv", "probes.csv",    "forces.csv",
+                             "checkpoint.bin",  "particles.pvd", "fluid_000006.vtu"};
+  for (size_t i = 0; i < sizeof sig_files / sizeof sig_files[0]; i++) {
+    char pa[800], pb[800];
+    snprintf(pa, sizeof pa, "%s/%s", cf, sig_files[i]);
+    snprintf(pb, sizeof pb, "%s/%s", c, sig_files[i]);
+    same_file(pa, pb);
+  }
+  /* The run really was split: the uninterrupted run has many rows. */
   size_t n;
   char *d = slurp(path("full", "diagnostics.csv"), &n);
   int rows = 0;
   for (size_t i = 0; i < n; i++) rows += d[i] == '\n';
   free(d);
   assert_true(rows > 30);
+
+  /* A restart with other numerics is refused (exit 2, naming the section); one with a later
+   * time.end is not. */
+  char ce[600], cke[700];
+  snprintf(ce, sizeof ce, "%s", path("changed", NULL));
+  assert_int_equal(run(ce, "time.max_steps=10", NULL), CMN_EXIT_INCOMPLETE);
+  snprintf(cke, sizeof cke, "%s/checkpoint.bin", ce);
+  pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) _exit(run(ce, "numerics.cfl=0.2", cke));
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), CMN_EXIT_INPUT);
+  pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) _exit(run(ce, "fluid.c0=15.0;time.end=0.04", cke)); /* 15.0: same value */
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 0);
   char cmd[700];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   assert_int_equal(system(cmd), 0);
@@ -202,7 +236,7 @@ static void library_restart(int gamma_dynamic) {
   close(fd);
   for (int n = 0; n < 12; n++) assert_int_equal(sph_solver_step(&x, INFINITY, msg, sizeof msg), 0);
   for (int n = 0; n < 5; n++) assert_int_equal(sph_solver_step(&y, INFINITY, msg, sizeof msg), 0);
-  struct sph_run_counters rc = {0.5, 0, NULL};
+  struct sph_run_counters rc = {.next_output = 0.5};
   assert_int_equal(sph_checkpoint_write(&y, &rc, ck), 0);
   sph_solver_free(&y);
   {

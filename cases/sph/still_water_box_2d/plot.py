@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Still water in a closed 2D tank (side walls): the still-water criteria of issue 5 at
+"""Still water in a closed 2D tank (side walls): the still-water criteria at
 dr = 0.025 m, the convergence of the spurious motion between dr = 0.05 m and 0.025 m, free surface
 with and without the gravity correction and the final hydrostatic pressure.
 usage: plot.py OUTPUT_DIR [--check]

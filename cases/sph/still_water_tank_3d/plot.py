@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Still water in a closed 3D tank (issue 5, case 1): energies, maximum speed, free surface and
+"""Still water in a closed 3D tank: energies, maximum speed, free surface and
 the final hydrostatic pressure, with the gravity-corrected diffusion (default, local form of M 81)
 and without the correction (M 49).
 usage: plot.py OUTPUT_DIR [--check]

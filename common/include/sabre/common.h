@@ -30,9 +30,25 @@ extern "C" {
 #define CMN_EXIT_INPUT 2
 /** Exit code for a run that failed (NaN, lost particle, solver failure, I/O error). */
 #define CMN_EXIT_FAILURE 1
+/**
+ * Exit code for a run stopped at time.max_steps before time.end (both programs): the outputs are
+ * complete and consistent up to the time reached (sabre-sph also writes a checkpoint), but the run
+ * did not reach time.end.
+ */
+#define CMN_EXIT_INCOMPLETE 3
 
 /** Set the program name used as prefix of every message (default "sabre"). */
 void cmn_set_program_name(const char *name);
+/** The program name set by cmn_set_program_name(). */
+const char *cmn_program_name(void);
+/** Print "<prog> <version>" on stdout (--version). */
+void cmn_print_version(void);
+/**
+ * Flush stdout and check it for write errors (a full disk, `> /dev/full`, a closed pipe): returns
+ * `status` if all went well, else prints "<prog>: error: cannot write the output: <why>" and
+ * returns CMN_EXIT_FAILURE. For the end of commands that print results on stdout.
+ */
+int cmn_stdout_status(int status);
 /** Informational message on stderr, prefixed with the program name; newline appended. */
 void cmn_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /** Warning on stderr ("<prog>: warning: ..."). */
@@ -153,6 +169,16 @@ int cmn_case_fail(struct cmn_case *c, const char *path, const char *fmt, ...)
 
 /** Error naming the first key of the file (in document order) that no getter read. 0 if none. */
 int cmn_case_check_unused(struct cmn_case *c);
+/**
+ * 64-bit digest (FNV-1a) of the subtree at `path` ("" for the whole case): kinds, keys in order
+ * and values, where a scalar that reads as a number counts by its value ("0.3" and "3e-1" are the
+ * same). 0 when the path is absent. For checking that a restart uses the parameters of the run it
+ * continues.
+ */
+unsigned long long cmn_case_digest(const struct cmn_case *c, const char *path);
+/** Number of top-level keys, and the name of the i-th (NULL if out of range). */
+int cmn_case_top_count(const struct cmn_case *c);
+const char *cmn_case_top_key(const struct cmn_case *c, int i);
 /** Write the tree (with defaults filled in) as YAML. 0 on success, -1 on I/O error. */
 int cmn_case_write(const struct cmn_case *c, FILE *out);
 /** Write it to a file path. 0 / -1. */
@@ -166,7 +192,9 @@ int cmn_case_write_file(const struct cmn_case *c, const char *path);
  * in three steps: cmn_cli_parse() reads the arguments, cmn_cli_load() loads the case and applies
  * the --set overrides in order, and, once the application has read the case (filling in its
  * defaults), cmn_cli_write_used() creates the run directory and writes DIR/used_case.yaml.
- * Options may come in any order; a repeated option keeps its last value. Bad input is reported
+ * Options may come in any order; each may be given once (--set may repeat): a repeated option is an
+ * error, never a silent override. --help prints the usage, --version the program's version.
+ * Bad input is reported
  * through cmn_input_error() (exit CMN_EXIT_INPUT), so these calls return only on success.
  * ------------------------------------------------------------------------------------------- */
 
@@ -192,10 +220,12 @@ struct cmn_cli {
  * Parse argv[1 .. argc) (argv[0] is the program or command name and is skipped): one case file,
  * --set (repeatable), --output and the `noptions` options of `options` (NULL when none). Messages
  * start with "<command>: " when command != NULL. Returns 1 if --help or -h was given (then `usage`
- * is printed on stdout and nothing is left to free), else 0 with *cli filled in.
+ * is printed on stdout and nothing is left to free) or --version (then the version is), else 0
+ * with *cli filled in.
  * Errors (exit CMN_EXIT_INPUT, message on stderr, "[<command>: ]" first):
  *   "--set: missing value (see --help)"               an option that takes a value ends argv;
  *   "unknown option '--x' (see --help)"               any other argument starting with '-';
+ *   "--output given twice: give each option once"     a repeated option other than --set;
  *   "one case file only ('a.yaml' and 'b.yaml')"      a second positional argument;
  *   "missing case file (see --help)"                  none.
  */
@@ -211,8 +241,8 @@ int cmn_cli_parse(struct cmn_cli *cli, int argc, char **argv, const char *comman
 struct cmn_case *cmn_cli_load(struct cmn_cli *cli);
 /**
  * Create the run directory `dir` (mkdir -p) and write the case, as used so far, into
- * dir/used_case.yaml. Errors (exit CMN_EXIT_INPUT): "cannot create the output directory 'dir'",
- * "cannot write 'dir/used_case.yaml'".
+ * dir/used_case.yaml. Errors (exit CMN_EXIT_INPUT) say why: "cannot create the output directory
+ * 'dir': Permission denied", "cannot write 'dir/used_case.yaml': No space left on device".
  */
 void cmn_cli_write_used(const struct cmn_case *c, const char *dir);
 

@@ -2,15 +2,15 @@
  * SABRE fv1d/ — the one-dimensional finite-volume reference solver of the barotropic Euler
  * equations
  *
- *     ∂U/∂t + ∂F(U)/∂x = 0,   U = (ρ, ρu),   F(U) = (ρu, ρu² + p(ρ)),          THEORY §2
+ *     ∂U/∂t + ∂F(U)/∂x = 0,   U = (ρ, ρu),   F(U) = (ρu, ρu² + p(ρ)),          docs/theory.md §2
  *
  * with the Tait equation of state of riemann/ (J(1)). Cell averages on a uniform mesh; limited
  * slopes on the primitive variables (ρ, u) (MUSCL); a numerical flux at each face (exact Godunov
  * through rmn_exact_solve, HLL, Rusanov); method of lines integrated by SUNDIALS ARKODE ERKStep
  * (an SSP-RK3 Shu–Osher table by default). The end faces are reflective walls, periodic,
  * transmissive, or open: an open face carries F(U_s), where U_s is the segment state that the
- * riemann/ boundary solver (J §III, THEORY §1.1) returns from the adjacent cell and the imposed
- * pressure or velocity, recomputed at every right-hand-side evaluation.
+ * riemann/ boundary solver (J §III, docs/theory.md §1.1) returns from the adjacent cell and the
+ * imposed pressure or velocity, recomputed at every right-hand-side evaluation.
  *
  * Units are SI throughout: x in m, t in s, ρ in kg/m³, u in m/s, p in Pa relative to p(ρ0) = 0.
  *
@@ -195,9 +195,9 @@ const struct fv1d_boundary_state *fv1d_solver_boundary(const struct fv1d_solver 
 void fv1d_initial_apply(struct fv1d_solver *s);
 
 /**
- * Semi-discrete right-hand side dy/dt at time t (y, ydot: state vectors as above), THEORY §2.
- * Returns 0; 1 (recoverable: non-positive or NaN density, failed Riemann solve — a smaller
- * step may cure it) with a message in fv1d_solver_error().
+ * Semi-discrete right-hand side dy/dt at time t (y, ydot: state vectors as above), docs/theory.md
+ * §2. Returns 0; 1 (recoverable: non-positive or NaN density, failed Riemann solve — a smaller step
+ * may cure it) with a message in fv1d_solver_error().
  */
 int fv1d_rhs_eval(struct fv1d_solver *s, double t, const double *y, double *ydot);
 
@@ -222,10 +222,13 @@ struct fv1d_stats {
 };
 
 /**
- * Integrate from the current time with ARKODE ERKStep (THEORY §2), stopping exactly at each output
- * time params->output_times[k] and ending at the last one (fv1d_case_read makes it t_end; output
- * times already passed are skipped). The observer (may be NULL) is called as documented at
- * fv1d_event; a non-zero return aborts the run. Returns 0 or -1 (message in fv1d_solver_error()).
+ * Integrate from the current time with ARKODE ERKStep (docs/theory.md §2), stopping exactly at each
+ * output time params->output_times[k] and ending at the last one (fv1d_case_read makes it t_end;
+ * output times already passed are skipped). The observer (may be NULL) is called as documented at
+ * fv1d_event; a non-zero return aborts the run. Returns 0 (reached the last output time), 1
+ * (stopped after params->max_steps steps counted from the start, before it: the state is
+ * consistent, the message in fv1d_solver_error() says where) or -1 (failure, message in
+ * fv1d_solver_error()).
  */
 int fv1d_integrate(struct fv1d_solver *s, fv1d_observer_fn observer, void *user,
                    struct fv1d_stats *stats);

@@ -4,9 +4,11 @@
  *
  *     ∂ρ/∂t + ∂(ρu)/∂x = 0,   ∂(ρu)/∂t + ∂(ρu² + p(ρ))/∂x = 0,
  *
- * with the Tait equation of state. Equation numbers J(n) refer to Joly et al., SPHERIC 2016;
- * "THEORY" to shared/THEORY.md. All quantities are SI: ρ in kg/m³, p in Pa (relative to the
- * reference state, so p(ρ0) = 0), velocities and sound speeds in m/s.
+ * with the Tait equation of state. Equation numbers J(n) refer to Joly, Violeau, Leroy, Ferrand,
+ * "Applying Riemann solvers to open boundaries in free surface and confined flows", SPHERIC 2016;
+ * "docs/theory.md §n" to the theory notes shipped with the SABRE sources. All quantities are SI:
+ * ρ in kg/m³, p in Pa (relative to the reference state, so p(ρ0) = 0), velocities and sound
+ * speeds in m/s.
  *
  * Conventions (GSL/SUNDIALS style):
  *   - every fallible function returns an int status, RMN_SUCCESS (0) or one of enum rmn_status;
@@ -239,7 +241,7 @@ void rmn_frame_to_global(const struct rmn_frame *frame, const double *local, dou
  * Solver parameters and workspace.
  * ------------------------------------------------------------------------------------------- */
 enum rmn_shock_model {
-  RMN_SHOCK_EXACT = 0, /**< moving-shock Rankine–Hugoniot (THEORY §1.1), the default */
+  RMN_SHOCK_EXACT = 0, /**< moving-shock Rankine–Hugoniot (docs/theory.md §1.1), the default */
   RMN_SHOCK_LINEARISED =
       1 /**< GPUSPH-style p2 − p_int = ρ_int u_int (u_int − u2); comparison only */
 };
@@ -265,7 +267,7 @@ struct rmn_workspace *rmn_workspace_alloc(void);
 void rmn_workspace_free(struct rmn_workspace *ws);
 
 /* ---------------------------------------------------------------------------------------------
- * The boundary Riemann problem, J §III and THEORY §1.1.
+ * The boundary Riemann problem, J §III and docs/theory.md §1.1.
  *
  * Across the λ0 contact ρ and u_n are continuous, so the segment state is "state 2", connected to
  * the interior state across the λ+1 wave only. One quantity is imposed (pressure or normal
@@ -351,7 +353,7 @@ int rmn_boundary_solve_batch(const struct rmn_eos *eos, const struct rmn_params 
                              size_t *first_failed);
 
 /**
- * Closed-form normal velocity behind a λ+1 shock (THEORY §1.1, S eliminated):
+ * Closed-form normal velocity behind a λ+1 shock (docs/theory.md §1.1, S eliminated):
  *   u2 = u_int + sqrt((p2 − p_int)(ρ2 − ρ_int)/(ρ2 ρ_int)),  ρ2 ≥ ρ_int.
  * Used to cross-check the Newton solve; returns NaN when ρ2 < ρ_int or ρ ≤ 0.
  */
@@ -366,8 +368,8 @@ void rmn_shock_residuals(const struct rmn_eos *eos, double rho_int, double un_in
                          double un2, double s, double residual[2]);
 
 /* ---------------------------------------------------------------------------------------------
- * The exact two-wave Riemann problem, THEORY §1.2. Left state (ρ_L, u_L), right state (ρ_R, u_R);
- * ρ = 0 is a dry (vacuum) state and is legitimate here.
+ * The exact two-wave Riemann problem, docs/theory.md §1.2. Left state (ρ_L, u_L), right state (ρ_R,
+ * u_R); ρ = 0 is a dry (vacuum) state and is legitimate here.
  * ------------------------------------------------------------------------------------------- */
 enum rmn_exact_wave { RMN_EXACT_RAREFACTION = 0, RMN_EXACT_SHOCK = 1 };
 
@@ -400,8 +402,8 @@ int rmn_exact_solve(const struct rmn_eos *eos, const struct rmn_params *params,
 void rmn_exact_sample(const struct rmn_exact *sol, double s, double *rho, double *u);
 
 /**
- * The star-region function f(ρ) = f_L(ρ) + f_R(ρ) + u_R − u_L of THEORY §1.2 whose root is ρ*
- * (exposed for tests and studies). Both states must be wet.
+ * The star-region function f(ρ) = f_L(ρ) + f_R(ρ) + u_R − u_L of docs/theory.md §1.2 whose root is
+ * ρ* (exposed for tests and studies). Both states must be wet.
  */
 double rmn_exact_star_function(const struct rmn_eos *eos, double rho, double rho_l, double u_l,
                                double rho_r, double u_r);

@@ -29,10 +29,10 @@ extern "C" {
  *
  * One struct sph_parts holds the particles of one kind as a structure of arrays, so a neighbour
  * loop streams through the few arrays it reads. Kinds follow the unified semi-analytical wall
- * model (THEORY §3): fluid particles, vertex particles (mesh nodes of the walls, their masses vary
- * on open boundaries) and segment particles (1D: a boundary point; 2D: a line segment between two
- * vertices; 3D: a triangle between three vertices). The fluid count varies at run time (particles
- * are created and removed at open boundaries); ids are stable and unique over all kinds.
+ * model (docs/theory.md §3): fluid particles, vertex particles (mesh nodes of the walls, their
+ * masses vary on open boundaries) and segment particles (1D: a boundary point; 2D: a line segment
+ * between two vertices; 3D: a triangle between three vertices). The fluid count varies at run time
+ * (particles are created and removed at open boundaries); ids are stable and unique over all kinds.
  * ------------------------------------------------------------------------------------------- */
 
 enum sph_kind { SPH_KIND_FLUID = 0, SPH_KIND_VERTEX = 1, SPH_KIND_SEGMENT = 2 };
@@ -295,6 +295,10 @@ int sph_mesh_write_stl(const struct sph_mesh *m, const char *path, int binary);
  * Geometry: case-file section, walls to particles, fluid filling
  * ------------------------------------------------------------------------------------------- */
 
+/** Range of geometry.h_over_dr (docs/sph-geometry.md). */
+#define SPH_H_OVER_DR_MIN 1.0
+#define SPH_H_OVER_DR_MAX 20.0
+
 /** Resolved `geometry` section of a case file (docs/sph-geometry.md). */
 struct sph_geometry {
   int dim;
@@ -302,6 +306,9 @@ struct sph_geometry {
   double h_over_dr;         /**< h / Δr [-] */
   double min_wall_distance; /**< fluid particles closer to a wall are not created [m] */
   double first_row;         /**< lattice offset: points at lo + (i + first_row) Δr [Δr] */
+  double est_fluid; /**< fluid particles expected (regions' volume / Δr^d, an upper bound) */
+  double est_walls; /**< wall segments expected after refining to Δr */
+  double est_bytes; /**< memory expected for the run [bytes] */
   struct sph_domain domain;
   struct sph_mesh walls; /**< refined, merged, checked */
   /** Fluid regions, in case order. */

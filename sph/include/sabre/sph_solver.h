@@ -360,18 +360,44 @@ double sph_skew_adjoint_defect(const struct sph_solver *sv, const double *const 
 /* ---------------------------------------------------------------------------------------------
  * Checkpoints: the whole store (through its field table), time, step and output counters.
  * ------------------------------------------------------------------------------------------- */
+#define SPH_MAX_DIGESTS 32
+/** Most particle outputs a run may ask for: time.end / time.output_interval ≤ this. */
+#define SPH_MAX_OUTPUTS 1000000
 struct sph_run_counters {
   double next_output;
   long outputs;
   double *output_times;
+  /** Digests (cmn_case_digest) of the case's top-level sections except `time`, by name: written
+   *  into the checkpoint, and compared on reading so that a restart continues the same numerics.
+   *  ndigest = 0: none written, no check. */
+  int ndigest;
+  char digest_name[SPH_MAX_DIGESTS][32];
+  unsigned long long digest[SPH_MAX_DIGESTS];
 };
+/** Fill rc's digests from the resolved case c (after every section was read). */
+void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c);
 /** Write atomically (tmp file + rename). Returns 0 or −1 (errno). */
 int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_counters *rc,
                          const char *path);
 /** Read into an initialised solver (same case): replaces the store, time and step. Returns 0 or
- *  −1 with a message. */
+ *  −1 with a message: not a checkpoint, truncated, another dimension, dr, h or wall count, or
+ *  (when both rc and the file carry digests) a section of the case other than `time` that differs
+ *  from the run that wrote it ("the case's numerics section differs ..."). */
 int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, const char *path,
                         char *msg, size_t msglen);
+
+/** Say why the time step dt (≤ 0 or NaN) is not positive: a non-finite particle state, or the
+ *  limit (force, CFL) that gave it, with the particle that set it. For sph_solver_step(). */
+void sph_solver_explain_dt(const struct sph_solver *sv, double dt, char *msg, size_t msglen);
+
+/**
+ * Evaluate the initial expressions of cfg (initial.pressure, initial.density, initial.velocity)
+ * at every fluid particle of s before the set-up does: the first value that is not finite, or not
+ * in range (pressure above the EOS's minimum, positive density), is an error at the key's file,
+ * line and column (cmn_case_fail: exits in fatal mode). Returns 0 or -1.
+ */
+int sph_config_check_initial(const struct sph_config *cfg, struct cmn_case *c,
+                             const struct sph_system *s);
 
 /** `sabre-sph run CASE.yaml [--set k=v]... [--output DIR] [--restart FILE] [--threads N]`. */
 int sph_cmd_run(int argc, char **argv);

@@ -1,6 +1,6 @@
 /*
- * SABRE sph/ — the Wendland C2 kernel and the unified semi-analytical wall integrals (THEORY §3,
- * §3.1; derivations with equation references in docs/sph-gamma.md):
+ * SABRE sph/ — the Wendland C2 kernel and the unified semi-analytical wall integrals
+ * (docs/theory.md §3, §3.1; derivations with equation references in docs/sph-gamma.md):
  *
  *   γ_a     = ∫_{Ω ∩ B(a)} w dV                                   J(2), M(2)
  *   ∇γ_as   = (∫_s w dS) n_s,   ∇γ_a = Σ_s ∇γ_as                  J(3), J(4), M(9), M(10)
@@ -73,7 +73,7 @@ struct sph_wall_element {
 /**
  * Contribution of one element to γ_a and ∇γ_a at point a (a[0..d-1] used).
  *
- * gamma_term [-] is the term subtracted from 1 (THEORY §3.1, docs/sph-gamma.md eq. G1):
+ * gamma_term [-] is the term subtracted from 1 (docs/theory.md §3.1, docs/sph-gamma.md eq. G1):
  *   γ_a = 1 − Σ_s gamma_term_s,  gamma_term_s = ∫_s G_d(|r|) (r·n_s)/|r|^d dS,
  * with G_d(r) = ∫_0^r w ρ^(d−1) dρ − 1/ω_d; it is ≥ 0 when a is on the fluid side of s.
  * grad_gamma_as [1/m] is ∇γ_as = (∫_s w dS) n_s, J(3); components beyond d are set to 0.

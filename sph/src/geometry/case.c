@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "geometry/geometry.h"
 #include "sabre/common.h"
@@ -60,8 +61,31 @@ static unsigned get_faces(struct cmn_case *c, const char *entry, int dim, unsign
   return bits;
 }
 
-/* Points [[x, y], ...] of a polygon. */
-static double (*get_points(struct cmn_case *c, const char *path, size_t min, size_t *n))[2] {
+/* Orientation of the triangle a, b, c: > 0 counter-clockwise, < 0 clockwise, 0 collinear. */
+static double orient(const double *a, const double *b, const double *c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* Point c collinear with segment ab lies within its bounding box. */
+static int on_segment(const double *a, const double *b, const double *c) {
+  return fmin(a[0], b[0]) <= c[0] && c[0] <= fmax(a[0], b[0]) && fmin(a[1], b[1]) <= c[1] &&
+         c[1] <= fmax(a[1], b[1]);
+}
+
+/* Segments pq and rs share at least one point. */
+static int segments_meet(const double *p, const double *q, const double *r, const double *s) {
+  double d1 = orient(r, s, p), d2 = orient(r, s, q), d3 = orient(p, q, r), d4 = orient(p, q, s);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+    return 1;
+  return (d1 == 0 && on_segment(r, s, p)) || (d2 == 0 && on_segment(r, s, q)) ||
+         (d3 == 0 && on_segment(p, q, r)) || (d4 == 0 && on_segment(p, q, s));
+}
+
+/* Points [[x, y], ...] of a polygon (closed: the last point joins the first). A polygon whose
+ * edges cross or touch other than at their shared corners has no inside: an input error naming
+ * the two edges. Adjacent edges folding back onto each other count as touching. */
+static double (*get_points(struct cmn_case *c, const char *path, size_t min, int closed,
+                           size_t *n))[2] {
   int len = cmn_case_seq_length(c, path);
   if (len < (int)min) cmn_case_fail(c, path, "expected a list of at least %zu points [x, y]", min);
   double(*pts)[2] = cmn_malloc((size_t)len * sizeof *pts);
@@ -69,6 +93,29 @@ static double (*get_points(struct cmn_case *c, const char *path, size_t min, siz
     char q[300];
     snprintf(q, sizeof q, "%s[%d]", path, i);
     cmn_case_get_doubles(c, q, 2, 2, pts[i], NULL);
+  }
+  const int nedges = closed ? len : len - 1;
+  for (int i = 0; i < nedges; i++) {
+    const double *a = pts[i], *b = pts[(i + 1) % len];
+    for (int j = i + 1; j < nedges; j++) {
+      const double *p = pts[j], *q = pts[(j + 1) % len];
+      const int next = j == i + 1, prev = closed && i == 0 && j == nedges - 1;
+      int meet;
+      if (next) /* shares b = p: folds back if q lies on ab beyond b's side, or b on pq */
+        meet = orient(a, b, q) == 0 &&
+               ((q[0] - b[0]) * (a[0] - b[0]) + (q[1] - b[1]) * (a[1] - b[1])) > 0;
+      else if (prev) /* shares a = q */
+        meet = orient(a, b, p) == 0 &&
+               ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) > 0;
+      else
+        meet = segments_meet(a, b, p, q);
+      if (meet)
+        cmn_case_fail(c, path,
+                      "the %s crosses itself: edge %d ([%g, %g] to [%g, %g]) meets edge %d ([%g, "
+                      "%g] to [%g, %g]); give the points in order around the boundary",
+                      closed ? "polygon" : "polyline", i, a[0], a[1], b[0], b[1], j, p[0], p[1],
+                      q[0], q[1]);
+    }
   }
   *n = (size_t)len;
   return pts;
@@ -159,7 +206,8 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
                       closed ? "a closed polygon has the fluid inside or outside"
                              : "an open polyline has the fluid on its left or right");
       size_t n;
-      double(*pts)[2] = get_points(c, key(p, sizeof p, entry, "points"), closed ? 3 : 2, &n);
+      double(*pts)[2] =
+          get_points(c, key(p, sizeof p, entry, "points"), closed ? 3 : 2, closed, &n);
       size_t nedges = closed ? n : n - 1;
       uint8_t *oe = cmn_calloc(nedges, 1);
       key(p, sizeof p, entry, "open_edges");
@@ -222,7 +270,7 @@ static void read_region(struct cmn_case *c, int i, int dim, struct sph_region *r
     return;
   }
   if (dim != 2) cmn_case_fail(c, p, "polygon regions exist in 2D only");
-  r->pts = get_points(c, key(p, sizeof p, entry, "points"), 3, &r->npts);
+  r->pts = get_points(c, key(p, sizeof p, entry, "points"), 3, 1, &r->npts);
   r->lo[0] = r->lo[1] = INFINITY;
   r->hi[0] = r->hi[1] = -INFINITY;
   for (size_t k = 0; k < r->npts; k++)
@@ -232,13 +280,106 @@ static void read_region(struct cmn_case *c, int i, int dim, struct sph_region *r
     }
 }
 
+/* ---------------------------------------------------------------------------------------------
+ * Size of the run before building it: a tiny dr or a geometry in the wrong unit (a 10 km STL read
+ * as metres) would otherwise sit silent for minutes growing memory. The estimate is an upper bound
+ * (fluid regions are clipped by the walls) and counts, per particle, the fields and the neighbour
+ * list entries of a support of radius 2h.
+ * ------------------------------------------------------------------------------------------- */
+static double neighbours_per_particle(int dim, double h_over_dr) {
+  const double r = 2.0 * h_over_dr; /* support radius in units of dr */
+  return dim == 1 ? 2.0 * r : dim == 2 ? PI * r * r : 4.0 / 3.0 * PI * r * r * r;
+}
+
+static double physical_memory(void) {
+  long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
+}
+
+/* Volume (dim 2: area; 1: length) of the box lo..hi, or the bounding box of a polygon's points,
+ * of entry `entry` when its keys are present and well formed (else 0: the getters report them
+ * later, in order). */
+static double entry_extent(struct cmn_case *c, const char *entry, int dim, double *surface) {
+  char p[256];
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  *surface = 0.0;
+  if (cmn_case_has(c, key(p, sizeof p, entry, "lo")) &&
+      cmn_case_has(c, key(p, sizeof p, entry, "hi"))) {
+    cmn_case_get_doubles(c, key(p, sizeof p, entry, "lo"), dim, dim, lo, NULL);
+    cmn_case_get_doubles(c, key(p, sizeof p, entry, "hi"), dim, dim, hi, NULL);
+  } else if (dim == 2 && cmn_case_seq_length(c, key(p, sizeof p, entry, "points")) > 0) {
+    int n = cmn_case_seq_length(c, p);
+    lo[0] = lo[1] = INFINITY;
+    hi[0] = hi[1] = -INFINITY;
+    for (int i = 0; i < n; i++) {
+      char q[300];
+      double x[2];
+      snprintf(q, sizeof q, "%s[%d]", p, i);
+      cmn_case_get_doubles(c, q, 2, 2, x, NULL);
+      for (int a = 0; a < 2; a++) lo[a] = fmin(lo[a], x[a]), hi[a] = fmax(hi[a], x[a]);
+    }
+  } else {
+    return 0.0;
+  }
+  double vol = 1.0, len[3];
+  for (int a = 0; a < dim; a++) vol *= len[a] = fabs(hi[a] - lo[a]);
+  *surface = dim == 1   ? 2.0
+             : dim == 2 ? 2.0 * (len[0] + len[1])
+                        : 2.0 * (len[0] * len[1] + len[1] * len[2] + len[2] * len[0]);
+  return vol;
+}
+
+/* Estimate the particles and memory of g (walls: `wall_measure` of the unrefined mesh, or < 0 to
+ * take the walls' boxes from the case) and stop if the run cannot fit in memory. */
+static void size_check(struct cmn_case *c, struct sph_geometry *g, double wall_measure, int say) {
+  const int dim = g->dim;
+  const double dr = g->dr, cell = pow(dr, dim), face = dim == 1 ? 1.0 : pow(dr, dim - 1);
+  double fluid = 0.0, walls = 0.0, surface;
+  int nr = cmn_case_seq_length(c, "geometry.fluid"), nw = cmn_case_seq_length(c, "geometry.walls");
+  for (int i = 0; i < nr; i++) {
+    char entry[64];
+    snprintf(entry, sizeof entry, "geometry.fluid[%d]", i);
+    fluid += entry_extent(c, entry, dim, &surface) / cell;
+  }
+  if (wall_measure >= 0.0) {
+    walls = dim == 1 ? wall_measure : wall_measure / face * (dim == 3 ? 2.0 : 1.0);
+  } else {
+    for (int i = 0; i < nw; i++) {
+      char entry[64];
+      snprintf(entry, sizeof entry, "geometry.walls[%d]", i);
+      entry_extent(c, entry, dim, &surface);
+      walls += surface / face * (dim == 3 ? 2.0 : 1.0);
+    }
+  }
+  /* per fluid or vertex particle: ~60 doubles of fields and two neighbour lists (fluid, walls) of
+   * 8-byte entries; per segment: ~30 doubles */
+  const double nb = neighbours_per_particle(dim, g->h_over_dr);
+  const double bytes = (fluid + walls) * (480.0 + 2.0 * 8.0 * nb) + walls * 240.0;
+  g->est_fluid = fluid;
+  g->est_walls = walls;
+  g->est_bytes = bytes;
+  const double mem = physical_memory();
+  if (!(bytes < 0.8 * mem) || !(fluid + 2.0 * walls < 2e9))
+    cmn_case_fail(c, "geometry.dr",
+                  "dr = %g m gives about %.3g fluid particles and %.3g wall segments, some %.3g "
+                  "GB, beyond this machine's %.3g GB of memory: increase dr, or check the "
+                  "geometry's unit (STL files are read in metres, geometry.walls[].scale)",
+                  dr, fluid, walls, bytes / 1e9, mem / 1e9);
+  if (say)
+    cmn_message("%s: about %.3g fluid particles and %.3g wall segments (%.3g MB); meshing...",
+                cmn_case_name(c), fluid, walls, bytes / 1e6);
+}
+
 void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
   memset(g, 0, sizeof *g);
   long dim;
   cmn_case_get_long(c, "geometry.dimension", 1, 3, &dim);
   g->dim = (int)dim;
   cmn_case_get_positive(c, "geometry.dr", &g->dr);
-  cmn_case_opt_positive(c, "geometry.h_over_dr", 2.0, &g->h_over_dr);
+  /* h/dr in [1, 20]: below, too few neighbours for the kernel sums; above, neighbour counts (and
+   * memory) grow as (h/dr)^d far beyond any convergence study. 1e6 is a typo, not a resolution. */
+  cmn_case_opt_double(c, "geometry.h_over_dr", 2.0, SPH_H_OVER_DR_MIN, SPH_H_OVER_DR_MAX,
+                      &g->h_over_dr);
   cmn_case_opt_double(c, "geometry.min_wall_distance", 0.5 * g->dr, 0, INFINITY,
                       &g->min_wall_distance);
   cmn_case_opt_double(c, "geometry.first_row", 0.5, 0.0, 1.0, &g->first_row);
@@ -256,6 +397,7 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
     if (a >= g->dim) cmn_case_fail(c, q, "no direction %s in %ldD", axis_names[a], dim);
     dom->periodic[a] = 1;
   }
+  size_check(c, g, -1.0, 0); /* before any generator meshes a box at spacing dr */
   sph_mesh_init(&g->walls, g->dim);
   int nw = cmn_case_seq_length(c, "geometry.walls");
   for (int i = 0; i < nw; i++) read_wall(c, i, g->dim, g->dr, dom->periodic, &g->walls);
@@ -286,6 +428,13 @@ void sph_geometry_read(struct sph_geometry *g, struct cmn_case *c) {
     }
   }
 
+  double measure = 0.0; /* the walls as read, before refining (an STL's true size) */
+  for (size_t e = 0; e < g->walls.nelem; e++) {
+    double v[3][3];
+    geom_element_vertices(&g->walls, e, v);
+    measure += g->dim == 1 ? 1.0 : geom_element_measure(g->dim, v);
+  }
+  size_check(c, g, measure, 1);
   double tol = 1e-9 * g->dr;
   sph_mesh_merge_vertices(&g->walls, tol);
   char msg[2048];

@@ -13,7 +13,18 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT4";
+static const char magic[16] = "SABRE-SPH-CKPT5";
+
+void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c) {
+  rc->ndigest = 0;
+  for (int i = 0; i < cmn_case_top_count(c) && rc->ndigest < SPH_MAX_DIGESTS; i++) {
+    const char *name = cmn_case_top_key(c, i);
+    /* `time` only says how far and how often: a restart may change it (a later time.end) */
+    if (strcmp(name, "time") == 0) continue;
+    snprintf(rc->digest_name[rc->ndigest], sizeof rc->digest_name[0], "%s", name);
+    rc->digest[rc->ndigest++] = cmn_case_digest(c, name);
+  }
+}
 
 #define W(ptr, size, count)                                                      \
   do {                                                                           \
@@ -34,6 +45,12 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   int32_t dim = s->dim;
   uint64_t nout = (uint64_t)rc->outputs;
   W(magic, 1, sizeof magic);
+  int32_t nd = rc->ndigest;
+  W(&nd, sizeof nd, 1);
+  for (int i = 0; i < rc->ndigest; i++) {
+    W(rc->digest_name[i], 1, sizeof rc->digest_name[i]);
+    W(&rc->digest[i], sizeof rc->digest[i], 1);
+  }
   W(&dim, sizeof dim, 1);
   W(&s->dr, sizeof(double), 1);
   W(&s->h, sizeof(double), 1);
@@ -120,9 +137,52 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   struct sph_domain dom;
   R(m, 1, sizeof m);
   if (memcmp(m, magic, sizeof m) != 0) {
-    snprintf(msg, msglen, "%s: not a SABRE SPH checkpoint (bad magic)", path);
+    snprintf(msg, msglen,
+             memcmp(m, magic, 14) == 0
+                 ? "%s: a checkpoint of another version of sabre-sph: restart with that version"
+                 : "%s: not a SABRE SPH checkpoint (bad magic)",
+             path);
     fclose(fp);
     return -1;
+  }
+  {
+    int32_t nd;
+    char name[32];
+    unsigned long long d;
+    R(&nd, sizeof nd, 1);
+    if (nd < 0 || nd > SPH_MAX_DIGESTS) goto short_read;
+    int seen[SPH_MAX_DIGESTS] = {0};
+    for (int i = 0; i < nd; i++) {
+      R(name, 1, sizeof name);
+      R(&d, sizeof d, 1);
+      name[sizeof name - 1] = '\0';
+      if (rc->ndigest == 0) continue; /* no case to compare with (library use) */
+      int j = 0;
+      while (j < rc->ndigest && strcmp(rc->digest_name[j], name) != 0) j++;
+      const char *what = j == rc->ndigest     ? "is absent from this case"
+                         : rc->digest[j] != d ? "differs in this case"
+                                              : NULL;
+      if (j < rc->ndigest) seen[j] = 1;
+      if (what) {
+        snprintf(msg, msglen,
+                 "%s: section '%s' of the run that wrote this checkpoint %s: a restart must use "
+                 "the same case and --set options (only the time section may change); start a "
+                 "new run without --restart to use the new parameters",
+                 path, name, what);
+        fclose(fp);
+        return -1;
+      }
+    }
+    for (int j = 0; j < rc->ndigest && nd > 0; j++)
+      if (!seen[j]) {
+        snprintf(msg, msglen,
+                 "%s: section '%s' of this case was not in the run that wrote this checkpoint: a "
+                 "restart must use the same case and --set options (only the time section may "
+                 "change); start a new run without --restart to use the new parameters",
+                 path, rc->digest_name[j]);
+        fclose(fp);
+        return -1;
+      }
   }
   R(&dim, sizeof dim, 1);
   R(&dr, sizeof dr, 1);

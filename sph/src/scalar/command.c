@@ -394,7 +394,8 @@ static void profiles_write(struct cmn_csv *csv, const struct sph_scalar *s,
 int sph_cmd_scalar(int argc, char **argv) {
   gsl_set_error_handler_off(); /* GSL failures come back as statuses (sabre/sph_robin.h) */
   struct cmn_cli cli;
-  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "scalar-output", NULL, 0)) return 0;
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "scalar-output", NULL, 0))
+    return cmn_stdout_status(0);
   const char *case_path = cli.case_path, *output = cli.output;
   struct cmn_case *c = cmn_cli_load(&cli);
   struct sph_geometry g;

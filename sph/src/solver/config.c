@@ -302,6 +302,13 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   /* time and output */
   TRY(cmn_case_get_positive(c, "time.end", &cfg->t_end));
   TRY(cmn_case_opt_positive(c, "time.output_interval", cfg->t_end / 100.0, &cfg->output_interval));
+  /* each output is a VTU file pair: more than 1e6 of them is a typo (1e-300), not a wish */
+  if (cfg->t_end / cfg->output_interval > SPH_MAX_OUTPUTS)
+    return cmn_case_fail(c, "time.output_interval",
+                         "%g s would write %.3g outputs up to time.end = %g s; at most %g: "
+                         "expected at least %g s",
+                         cfg->output_interval, cfg->t_end / cfg->output_interval, cfg->t_end,
+                         (double)SPH_MAX_OUTPUTS, cfg->t_end / SPH_MAX_OUTPUTS);
   TRY(cmn_case_opt_long(c, "time.diagnostics_every", 1, 1, 1000000000L, &cfg->diagnostics_every));
   TRY(cmn_case_opt_long(c, "time.checkpoint_steps", 0, 0, 1000000000L, &cfg->checkpoint_steps));
   TRY(cmn_case_opt_double(c, "time.checkpoint_minutes", 0.0, 0.0, INFINITY,
@@ -314,5 +321,45 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   /* vertex values and imposed flux (docs/sph-robin.md) */
   TRY(read_vertex_values(c, cfg));
   TRY(read_imposed_flux(c, cfg, dim));
+  return 0;
+}
+
+/* One initial expression over the fluid: the first position where it is not finite, or not in
+ * range, is reported at the key's file and line. */
+static int check_expr(struct cmn_case *c, const char *path, const char *text, int dim,
+                      const struct sph_parts *f, double lo, const char *what, const char *unit) {
+  static const char *const xyz[] = {"x", "y", "z"};
+  if (!text[0]) return 0;
+  char err[512];
+  struct cmn_expr *e = cmn_expr_compile(text, dim, xyz, err, sizeof err);
+  if (!e) return cmn_case_fail(c, path, "expected a number or an expression: %s", err);
+  int rc = 0;
+  for (size_t a = 0; a < f->n && rc == 0; a++) {
+    const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    const double v = cmn_expr_eval(e, x);
+    if (!isfinite(v) || !(v > lo))
+      rc = cmn_case_fail(c, path, "'%s' is %g %s at the fluid particle (%g, %g, %g): expected %s",
+                         text, v, unit, x[0], x[1], x[2], what);
+  }
+  cmn_expr_free(e);
+  return rc;
+}
+
+int sph_config_check_initial(const struct sph_config *cfg, struct cmn_case *c,
+                             const struct sph_system *s) {
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  struct rmn_eos eos;
+  if (rmn_eos_init(&eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS) return 0; /* read checked */
+  char above[128];
+  const double pmin = rmn_eos_min_pressure(&eos);
+  snprintf(above, sizeof above, "a finite pressure above the EOS's minimum %g Pa", pmin);
+  TRY(check_expr(c, "initial.pressure", cfg->p0_expr, s->dim, f, pmin, above, "Pa"));
+  TRY(check_expr(c, "initial.density", cfg->rho0_expr, s->dim, f, 0.0, "a finite positive density",
+                 "kg/m^3"));
+  for (int i = 0; i < s->dim; i++) {
+    char q[64];
+    snprintf(q, sizeof q, "initial.velocity[%d]", i);
+    TRY(check_expr(c, q, cfg->u0_expr[i], s->dim, f, -INFINITY, "a finite velocity", "m/s"));
+  }
   return 0;
 }

@@ -623,8 +623,9 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
   sv->gamma_current = 0; /* positions move from here; the corrector's γ sets it again */
   double dt = fmin(sph_solver_timestep(sv), dt_limit);
   if (!(dt > 0.0)) {
-    snprintf(msg, msglen, "step %ld, t = %.9g s: time step %g s is not positive", sv->step + 1,
-             sv->time, dt);
+    char why[768];
+    sph_solver_explain_dt(sv, dt, why, sizeof why);
+    snprintf(msg, msglen, "step %ld, t = %.9g s: %s", sv->step + 1, sv->time, why);
     return -1;
   }
   sv->dt = dt;

@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# The sabre-sph command line as a user meets it: --help/--version, the default thread count and
+# wait policy, start-up and closing summaries, bounded inputs that stop at once instead of hanging
+# (time.output_interval, dr, huge walls, h_over_dr, self-crossing polygons), time.max_steps (exit
+# 3), messages that say why and where, and stdout write errors.
+# Usage: cli.sh PATH/TO/sabre-sph SOURCE_DIR
+set -u
+tool=$1 src=$2
+fails=0 passes=0
+ok() { passes=$((passes + 1)); }
+bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cat >"$tmp/case.yaml" <<'YAML'
+geometry:
+  dimension: 2
+  dr: 0.025
+  walls:
+    - type: box
+      lo: [0, 0]
+      hi: [0.5, 0.4]
+  fluid:
+    - type: box
+      lo: [0, 0]
+      hi: [0.2, 0.2]
+fluid:
+  rho0: 1000
+  c0: 15
+gravity: [0, -9.81]
+initial:
+  pressure: hydrostatic
+time:
+  end: 0.01
+YAML
+# expect STATUS SECONDS CMD...: exit status within a time limit; stdout/stderr in $tmp/out, err
+expect() {
+  local want=$1 limit=$2; shift 2
+  timeout -k 5 "$limit" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  if [ $rc -eq 124 ] || [ $rc -eq 137 ]; then bad "still running after $limit s: $*"; return; fi
+  if [ $rc -eq "$want" ]; then ok; else bad "exit $rc (want $want) for: $* :: $(tail -3 "$tmp/err")"; fi
+}
+has() { if grep -q -- "$1" "$tmp/$2"; then ok; else bad "'$1' not in $2: $(tail -3 "$tmp/$2")"; fi; }
+hasnt() { if grep -q -- "$1" "$tmp/$2"; then bad "'$1' in $2: $(grep -- "$1" "$tmp/$2")"; else ok; fi; }
+run() { expect "$@"; hasnt "$src/" err; } # no message names a source file by its absolute path
+
+# --version, and --help on every command
+run 0 10 "$tool" --version; has '^sabre-sph [0-9]*\.[0-9]*\.[0-9]*$' out
+for c in run mesh scalar gamma; do run 0 10 "$tool" $c --help; has '^usage:' out; done
+run 0 10 "$tool" --help; has 'sabre-sph <command> --help' out
+
+# the default: one thread with a passive wait policy, without --threads or OMP_* variables;
+# start-up summary (particles, vertices, segments, h, c0, dt) and closing summary
+run 0 60 env -u OMP_NUM_THREADS -u OMP_WAIT_POLICY "$tool" run "$tmp/case.yaml" --output "$tmp/d"
+has '72 vertices, 72 segments; dr = 0.025 m, h = 0.05 m, c0 = 15 m/s; dt about' err
+has '1 thread (wait policy passive)' err
+has 'done at t = 0.01 s: [0-9]* steps, [0-9]* outputs, .* particle-steps/s; outputs in' err
+has 'about .* fluid particles and .* wall segments' err # the size estimate before meshing
+run 0 60 env -u OMP_WAIT_POLICY OMP_NUM_THREADS=2 "$tool" run "$tmp/case.yaml" --output "$tmp/d2"
+has '2 threads (wait policy passive)' err
+run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/d3" --threads 1 --threads 2
+has 'given twice' err
+
+# bounded inputs: errors within seconds, naming the key
+run 2 20 "$tool" run "$tmp/case.yaml" --output "$tmp/e1" --set time.output_interval=1e-300
+has 'time.output_interval: .*at most' err
+run 2 20 "$tool" run "$tmp/case.yaml" --output "$tmp/e2" --set geometry.dr=1e-7
+has 'geometry.dr: .*memory' err
+run 2 20 "$tool" mesh "$tmp/case.yaml" --output "$tmp/e3" --set 'geometry.walls[0].hi=[10000, 10000]' \
+  --set geometry.dr=0.0001
+has 'geometry.dr: .*memory' err
+# a 10 km STL box in 3D (a file in millimetres read as metres)
+{
+  echo "solid box"
+  L=10000
+  for f in "0 0 0;$L 0 0;$L $L 0" "0 0 0;$L $L 0;0 $L 0" "0 0 $L;$L $L $L;$L 0 $L" \
+           "0 0 $L;0 $L $L;$L $L $L" "0 0 0;0 0 $L;$L 0 $L" "0 0 0;$L 0 $L;$L 0 0" \
+           "0 $L 0;$L $L 0;$L $L $L" "0 $L 0;$L $L $L;0 $L $L" "0 0 0;0 $L 0;0 $L $L" \
+           "0 0 0;0 $L $L;0 0 $L" "$L 0 0;$L 0 $L;$L $L $L" "$L 0 0;$L $L $L;$L $L 0"; do
+    echo " facet normal 0 0 0"; echo "  outer loop"
+    IFS=";" read -r a c b <<<"$f"; echo "   vertex $a"; echo "   vertex $b"; echo "   vertex $c"
+    echo "  endloop"; echo " endfacet"
+  done
+  echo "endsolid box"
+} >"$tmp/big.stl"
+cat >"$tmp/stl.yaml" <<'YAML'
+geometry:
+  dimension: 3
+  dr: 0.02
+  walls:
+    - type: stl
+      file: big.stl
+  fluid:
+    - type: box
+      lo: [0, 0, 0]
+      hi: [0.1, 0.1, 0.1]
+YAML
+run 2 20 "$tool" mesh "$tmp/stl.yaml" --output "$tmp/e4"
+has 'geometry.dr: .*wall segments.*memory.*unit' err
+run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/e5" --set geometry.h_over_dr=1e6
+has 'geometry.h_over_dr: expected a number in \[1, 20\]' err
+run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/e6" \
+  --set 'geometry.fluid[0]={type: polygon, points: [[0, 0], [0.2, 0.2], [0.2, 0], [0, 0.2]]}'
+has 'geometry.fluid\[0\].points: the polygon crosses itself' err
+run 2 10 "$tool" run "$tmp/case.yaml" --output "$tmp/e7" \
+  --set 'geometry.walls[0]={type: polygon, points: [[0, 0], [0.5, 0.4], [0.5, 0], [0, 0.4]]}'
+has 'geometry.walls\[0\].points: the polygon crosses itself' err
+
+# time.max_steps: stopped before time.end with exit 3 (as sabre-fv1d), checkpoint written
+run 3 60 "$tool" run "$tmp/case.yaml" --output "$tmp/m" --set time.max_steps=4
+has 'time.max_steps = 4 reached' err
+[ -f "$tmp/m/checkpoint.bin" ] && ok || bad "no checkpoint after time.max_steps"
+
+# messages say why and where: a bad initial expression names file:line and the key; a time step
+# that is not positive says which limit; output directories that cannot be created say why
+sed 's/pressure: hydrostatic/pressure: "1000 * sqrt(x - 0.1)"/' "$tmp/case.yaml" >"$tmp/expr.yaml"
+run 2 20 "$tool" run "$tmp/expr.yaml" --output "$tmp/x1"
+has 'expr.yaml:17:[0-9]*: initial.pressure: .* at the fluid particle' err
+[ -e "$tmp/x1" ] && bad "a run directory was created for bad input" || ok
+run 1 20 "$tool" run "$tmp/case.yaml" --output "$tmp/x2" --set 'initial.velocity=[1e300, 0]'
+has 'time step 0 s is not positive: fluid particle id .* non-finite state' err
+run 2 10 "$tool" run "$tmp/case.yaml" --output /dev/null/out
+has "cannot create the output directory '/dev/null/out': Not a directory" err
+
+# results on stdout that cannot be written are a failure
+if [ -w /dev/full ]; then
+  timeout 20 "$tool" gamma --dim 2 --dr 0.1 --h-over-dr 2 --box 0,0:1,1 --at 0.5,0.5 \
+    >/dev/full 2>"$tmp/err"; rc=$?
+  [ $rc -eq 1 ] && ok || bad "gamma > /dev/full: exit $rc (want 1)"
+  has 'cannot write the output' err
+  timeout 20 "$tool" --help >/dev/full 2>/dev/null; rc=$?
+  [ $rc -eq 1 ] && ok || bad "--help > /dev/full: exit $rc (want 1)"
+fi
+echo "$passes passed, $fails failed"
+[ $fails -eq 0 ]

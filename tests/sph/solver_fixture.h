@@ -68,7 +68,6 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->vertex_volume = SPH_VVOL_FITTED;
   cfg->vertex_layer = 0.5;
   cfg->repack_steps = 0;
-  cfg->repack_damping = 20.0;
   cfg->cfl = 0.3;
   cfg->viscous_factor = 0.125;
   cfg->force_factor = 0.25;

@@ -192,7 +192,6 @@ struct sph_config {
   int vertex_volume;      /**< enum sph_vertex_volume */
   double vertex_layer;    /**< thickness of the wall layer of the vertex volumes [Δr] */
   long repack_steps;      /**< pseudo-time steps of the initial repacking (0: none) */
-  double repack_damping;  /**< repacking: velocities × e^(−1/damping) per step [steps] */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   double dt_max;
@@ -301,16 +300,17 @@ void sph_solver_evaluate(struct sph_solver *sv);
  * momentum equation at a uniform pressure without gravity (V_b = Δr^d): the force is then
  * −(2p/ρ) times the defect, the gradient of a potential, so the damped motion settles. Particles
  * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
- * 2h stay where they are (a lid: a free surface has a defect of its own). Pseudo-velocities decay
- * by e^(−1/damping) per step (damping in steps, > 0); the pseudo time step is the solver's CFL and
- * force limits, and at most h/10 of displacement per step. On return the fluid velocities are
+ * 2h stay where they are (a lid: a free surface has a defect of its own). The pseudo-dynamics is
+ * FIRE (Bitzek et al. 2006: velocities turned towards the force, the step grown while the power
+ * stays positive, the motion stopped when it turns negative), starting from the solver's CFL and
+ * force limits, with at most h/10 of displacement per step. On return the fluid velocities are
  * zero and gravity is restored; masses and densities are uniform (ρ0 (1 + 1e-6), m = ρ Δr^d) and
  * must be set by the caller for the new positions; lists and wall data are stale
  * (sph_solver_sync() was called). sv->repack_residual[0..1] receive the largest defect × h before
  * and after, sv->repack_fixed the number of particles held. Returns 0, or -1 with a message when
  * a particle ended behind a wall.
  */
-int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *msg, size_t msglen);
+int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msglen);
 /**
  * EOS for every fluid particle, then the vertex pressures — Shepard M(16–17) with the hydrostatic
  * correction, or per wall group (sph_solver_vertex_groups) the order-m least squares M(64–74) with

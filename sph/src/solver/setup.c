@@ -208,8 +208,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_solver_boundary_values(sv);
   if (cfg->repack_steps > 0) {
     char msg[512];
-    if (sph_solver_repack(sv, cfg->repack_steps, cfg->repack_damping, msg, sizeof msg) != 0)
-      cmn_input_error("%s", msg);
+    if (sph_solver_repack(sv, cfg->repack_steps, msg, sizeof msg) != 0) cmn_input_error("%s", msg);
     fluid_density(sv, &prof);
     sph_nbrs_build(&sv->nb, sys, cfg->skin_over_h * sys->h);
     sph_nbrs_gamma(&sv->nb, sys, &sv->kernel);

@@ -503,10 +503,10 @@ static double completeness(const struct sph_solver *sv, size_t a) {
   return sum / f->gamma[a];
 }
 
-int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *msg, size_t msglen) {
+int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msglen) {
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const size_t n = f->n;
-  const double h = sv->sys.h, decay = exp(-1.0 / damping);
+  const double h = sv->sys.h;
   const double rho_r = (1.0 + 1e-6) * sv->cfg.rho0, vol = pow(sv->sys.dr, sv->sys.dim);
   double gravity[3];
   memcpy(gravity, sv->cfg.gravity, sizeof gravity);
@@ -533,31 +533,65 @@ int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *m
   for (size_t a = 0; a < n; a++) sv->repack_fixed += fixed[a] != 0;
   const double p_r = rmn_eos_pressure(&sv->eos, rho_r);
   const double v_ref = sqrt(2.0 * p_r / rho_r);
+  /* FIRE (Bitzek et al. 2006, Phys. Rev. Lett. 97:170201) with its usual constants: the velocity
+   * is turned towards the force, the step grows while the power F·v stays positive, and the
+   * motion stops and restarts slower when it turns negative. */
+  const int fire_nmin = 5;
+  const double fire_inc = 1.1, fire_dec = 0.5, fire_alpha0 = 0.1, fire_falpha = 0.99;
+  double dt = 0.0, dt_max = 0.0, alpha = fire_alpha0;
+  int npos = 0;
   for (long it = 0;; it++) {
-    double amax = 0.0, vmax = 0.0;
+    double amax = 0.0, power = 0.0, fnorm2 = 0.0, vnorm2 = 0.0;
     for (size_t a = 0; a < n; a++) {
       if (fixed[a])
-        for (int c = 0; c < 3; c++) sv->acc[c][a] = 0.0;
-      double a2 = 0.0, v2 = 0.0;
+        for (int c = 0; c < 3; c++) sv->acc[c][a] = f->v[c][a] = 0.0;
+      double a2 = 0.0;
       for (int c = 0; c < 3; c++) {
         a2 += sv->acc[c][a] * sv->acc[c][a];
-        v2 += f->v[c][a] * f->v[c][a];
+        vnorm2 += f->v[c][a] * f->v[c][a];
+        power += sv->acc[c][a] * f->v[c][a];
       }
+      fnorm2 += a2;
       amax = fmax(amax, sqrt(a2));
-      vmax = fmax(vmax, sqrt(v2));
     }
     /* Residual in units of the defect: max |Σ_{b∈P} V_b ∇w_ab − ∇γ_a| h (a = −2 p_r/ρ D_a). */
     const double residual = amax * h / (2.0 * p_r / rho_r);
-    if (it == 0) sv->repack_residual[0] = residual;
+    if (it == 0) {
+      sv->repack_residual[0] = residual;
+      dt = fmin(sv->cfg.force_factor * sqrt(h / amax), sv->cfg.cfl * h / v_ref);
+      dt_max = 10.0 * dt;
+    }
     sv->repack_residual[1] = residual;
     if (it == steps || !(amax > 0.0)) break;
-    double dt = fmin(sv->cfg.force_factor * sqrt(h / amax), sv->cfg.cfl * h / v_ref);
-    if (vmax > 0.0) dt = fmin(dt, 0.1 * h / vmax);
-    for (int c = 0; c < 3; c++)
-      for (size_t a = 0; a < n; a++) {
-        f->v[c][a] = fixed[a] ? 0.0 : decay * f->v[c][a] + dt * sv->acc[c][a];
-        f->x[c][a] += dt * f->v[c][a];
+    const double mix = sqrt(vnorm2 / fnorm2);
+    if (power > 0.0) {
+      for (int c = 0; c < 3; c++)
+        for (size_t a = 0; a < n; a++)
+          f->v[c][a] = (1.0 - alpha) * f->v[c][a] + alpha * mix * sv->acc[c][a];
+      if (++npos > fire_nmin) {
+        dt = fmin(dt * fire_inc, dt_max);
+        alpha *= fire_falpha;
       }
+    } else {
+      npos = 0;
+      dt *= fire_dec;
+      alpha = fire_alpha0;
+      for (int c = 0; c < 3; c++)
+        for (size_t a = 0; a < n; a++) f->v[c][a] = 0.0;
+    }
+    double vmax = 0.0;
+    for (size_t a = 0; a < n; a++) {
+      double v2 = 0.0;
+      for (int c = 0; c < 3; c++) {
+        f->v[c][a] += dt * sv->acc[c][a];
+        v2 += f->v[c][a] * f->v[c][a];
+      }
+      vmax = fmax(vmax, sqrt(v2));
+    }
+    /* At most h/10 of displacement per step. */
+    const double step = vmax > 0.0 ? fmin(dt, 0.1 * h / vmax) : dt;
+    for (int c = 0; c < 3; c++)
+      for (size_t a = 0; a < n; a++) f->x[c][a] += step * f->v[c][a];
     wrap(sv);
     sv->gamma_current = 0;
     sph_solver_evaluate(sv);
@@ -573,8 +607,8 @@ int sph_solver_repack(struct sph_solver *sv, long steps, double damping, char *m
   if (behind == 0) return 0;
   snprintf(msg, msglen,
            "repacking: %zu fluid particles left the fluid domain through a wall, the first "
-           "(index %zu) at (%.9g, %.9g, %.9g); fewer repack.steps or a larger repack.damping "
-           "may help",
+           "(index %zu) at (%.9g, %.9g, %.9g); check that the fluid regions lie inside the walls, "
+           "or set fewer repack.steps",
            behind, first, f->x[0][first], f->x[1][first], f->x[2][first]);
   return -1;
 }

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Write tank.stl: the closed boundary of the water's domain in SPHERIC test 2 (Kleefsman et al.
+2005): the tank [0, 3.22] x [0, 1] x [0, 1] m minus the box obstacle [0.6635, 0.8245] x
+[0.2985, 0.7015] x [0, 0.161] m that stands on its floor, as one closed ASCII STL surface.
+
+Why one surface: SABRE's walls must be closed (docs/sph-geometry.md §3, every edge in exactly two
+triangles running through it in opposite directions) and must not overlap. A `box` tank plus an
+obstacle STL read with `fluid: outside` cannot express a box standing ON the floor: a closed
+obstacle would overlap the floor with its bottom face, an open one (five faces) leaves its bottom
+edges in one triangle. So the floor here has a rectangular hole where the obstacle stands, and
+the obstacle's five wetted faces close it; the case reads the surface with `fluid: inside`.
+
+Every face is a grid of near-square rectangles (each cut in two triangles) on breakpoints common to
+all faces (the obstacle's edges among them), so the surface is conforming (no hanging nodes) and
+SABRE's longest-edge bisection refines it to triangles of edge <= 1.5 dr whatever the case's dr.
+Facets run counter-clockwise seen from outside the water's domain (right-hand normal pointing out
+of the solid the surface bounds, as the STL format requires): out of the tank's walls, into the
+obstacle.
+
+usage: make_tank_stl.py [FILE]   (default: tank.stl next to this script)"""
+import os
+import sys
+
+LX, LY, LZ = 3.22, 1.0, 1.0                   # tank (Kleefsman et al. 2005, Fig. 2)
+OX, OY, OZ = (0.6635, 0.8245), (0.2985, 0.7015), 0.161   # obstacle 0.161 x 0.403 x 0.161 m
+CELL = 0.17                                   # target size of the coarse grid [m]
+
+
+def breaks(points):
+    """Sorted breakpoints through the given points, intervals cut into pieces of about CELL."""
+    out = [points[0]]
+    for a, b in zip(points[:-1], points[1:]):
+        n = max(1, round((b - a) / CELL))
+        out += [a + (b - a) * k / n for k in range(1, n)] + [b]
+    return out
+
+
+XS = breaks([0.0, OX[0], OX[1], LX])
+YS = breaks([0.0, OY[0], OY[1], LY])
+ZS = breaks([0.0, OZ, LZ])      # OZ among them keeps the grid of the side walls regular
+
+
+def sub(a, b):
+    return tuple(p - q for p, q in zip(a, b))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def face(axis, level, normal, us, vs, skip=None):
+    """Triangles of the plane coordinate[axis] = level, gridded by us x vs on the two other axes
+    (in increasing axis order), oriented so that the right-hand normal is `normal` (+1/-1 along
+    axis); skip(u0, u1, v0, v1) -> True leaves a rectangle out."""
+    other = [k for k in range(3) if k != axis]
+    tris = []
+    for i in range(len(us) - 1):
+        for j in range(len(vs) - 1):
+            if skip and skip(us[i], us[i + 1], vs[j], vs[j + 1]):
+                continue
+            quad = []
+            for u, v in ((us[i], vs[j]), (us[i + 1], vs[j]), (us[i + 1], vs[j + 1]), (us[i], vs[j + 1])):
+                p = [0.0, 0.0, 0.0]
+                p[axis], p[other[0]], p[other[1]] = level, u, v
+                quad.append(tuple(p))
+            a, b, c, d = quad
+            if cross(sub(b, a), sub(c, a))[axis] * normal < 0:
+                a, b, c, d = a, d, c, b
+            tris += [(a, b, c), (a, c, d)]
+    return tris
+
+
+def surface():
+    eps = 1e-12
+    inside = [v for v in XS if OX[0] - eps <= v <= OX[1] + eps]
+    ys_o = [v for v in YS if OY[0] - eps <= v <= OY[1] + eps]
+    zs_o = [v for v in ZS if v <= OZ + eps]
+
+    def under_obstacle(x0, x1, y0, y1):
+        return x0 >= OX[0] - eps and x1 <= OX[1] + eps and y0 >= OY[0] - eps and y1 <= OY[1] + eps
+
+    tris = []
+    # the tank, normals pointing out of it
+    tris += face(0, 0.0, -1, YS, ZS) + face(0, LX, +1, YS, ZS)
+    tris += face(1, 0.0, -1, XS, ZS) + face(1, LY, +1, XS, ZS)
+    tris += face(2, 0.0, -1, XS, YS, skip=under_obstacle) + face(2, LZ, +1, XS, YS)
+    # the obstacle, normals pointing into it (out of the water's domain)
+    tris += face(0, OX[1], -1, ys_o, zs_o) + face(0, OX[0], +1, ys_o, zs_o)
+    tris += face(1, OY[0], +1, inside, zs_o) + face(1, OY[1], -1, inside, zs_o)
+    tris += face(2, OZ, -1, inside, ys_o)
+    return tris
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    path = sys.argv[1] if len(sys.argv) >= 2 else os.path.join(here, "tank.stl")
+    lines = ["solid spheric_test2"]
+    for tri in surface():
+        n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))
+        norm = sum(c * c for c in n) ** 0.5
+        lines.append("  facet normal %g %g %g" % tuple(c / norm for c in n))
+        lines.append("    outer loop")
+        lines += ["      vertex %.9g %.9g %.9g" % p for p in tri]
+        lines.append("    endloop")
+        lines.append("  endfacet")
+    lines.append("endsolid spheric_test2")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("wrote %s (%d triangles)" % (path, len(lines) // 7))
+
+
+if __name__ == "__main__":
+    main()

@@ -297,7 +297,8 @@ void sph_solver_evaluate(struct sph_solver *sv);
  * arrangement in which the zeroth-order defect of the pressure gradient, Σ_{b∈F∪V} V_b ∇w_ab −
  * ∇γ_a (docs/sph-solver.md §2), vanishes, so that fluid at uniform pressure next to walls, edges
  * and corners is at rest. A damped pseudo-dynamics of `steps` steps under the solver's own
- * momentum equation at a uniform pressure without gravity (V_b = Δr^d): the force is then
+ * momentum equation at a uniform pressure without gravity (fluid V_b = Δr^d, vertex volumes
+ * m_v/ρ_v of the state on entry): the force is then
  * −(2p/ρ) times the defect, the gradient of a potential, so the damped motion settles. Particles
  * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
  * 2h stay where they are (a lid: a free surface has a defect of its own). The pseudo-dynamics is

@@ -516,6 +516,13 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
     f->mass[a] = rho_r * vol;
     for (int c = 0; c < 3; c++) f->v[c][a] = 0.0;
   }
+  /* The vertices keep their volumes m_v/ρ_v of the initial state at the repacking's density. */
+  struct sph_parts *vx = &sv->sys.part[SPH_KIND_VERTEX];
+  double *mass_v = cmn_malloc((vx->n + 1) * sizeof *mass_v);
+  for (size_t i = 0; i < vx->n; i++) {
+    mass_v[i] = vx->mass[i];
+    vx->mass[i] *= rho_r / vx->rho[i];
+  }
   /* The lid: particles on a free surface and their neighbours within 2h stay put. */
   sv->gamma_current = 0;
   sph_solver_evaluate(sv);
@@ -597,6 +604,8 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
     sph_solver_evaluate(sv);
   }
   free(fixed);
+  for (size_t i = 0; i < vx->n; i++) vx->mass[i] = mass_v[i];
+  free(mass_v);
   memcpy(sv->cfg.gravity, gravity, sizeof gravity);
   for (int c = 0; c < 3; c++)
     for (size_t a = 0; a < n; a++) f->v[c][a] = 0.0;

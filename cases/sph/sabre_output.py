@@ -13,11 +13,14 @@ forms of read_vtu and read_csv (numpy is imported when they are called).
                                        headers (fluid_*.vtu, boundary_*.vtu) -> {name: array}
     read_pvd(path, part=None)          ParaView collection (particles.pvd) -> [(time, file)]
     used_dr(run_dir)                   geometry.dr of a run, from its used_case.yaml
+    Checks()                           the criteria of a `plot.py --check`: require(ok, what)
+                                       prints one ok/FAIL line, done() exits 1 if one failed
 """
 import csv
 import os
 import re
 import struct
+import sys
 
 # VTK type name -> (struct / numpy code, size in bytes)
 TYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}
@@ -106,3 +109,23 @@ def used_dr(run_dir):
     --set geometry.dr=...)."""
     text = open(os.path.join(run_dir, "used_case.yaml")).read()
     return float(re.search(r"^\s*dr:\s*([0-9.eE+-]+)", text, re.M).group(1))
+
+
+class Checks:
+    """The criteria of a `plot.py --check`: prints "criteria (README.md):", then require(ok, what)
+    prints "  ok   what" or "  FAIL what"; done() exits with "check failed: N criterion(s)" (status
+    1) when one failed, else prints "all criteria hold"."""
+
+    def __init__(self):
+        self.failures = []
+        print("criteria (README.md):")
+
+    def require(self, ok, what):
+        print("  %-4s %s" % ("ok" if ok else "FAIL", what))
+        if not ok:
+            self.failures.append(what)
+
+    def done(self):
+        if self.failures:
+            sys.exit("check failed: %d criterion(s)" % len(self.failures))
+        print("all criteria hold")

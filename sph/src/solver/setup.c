@@ -80,7 +80,6 @@ struct profile {
   const struct rmn_eos *eos;
   int hydrostatic;
   double gnorm, up[3], level; /* |g|, −g/|g|, the level of p = 0 along up */
-  double p_const;
   struct cmn_expr *p_expr, *rho_expr;
 };
 

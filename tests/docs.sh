@@ -6,11 +6,7 @@
 # Usage: docs.sh SOURCE_DIR BUILD_DIR PATH/TO/sabre-sph
 set -u
 src=$1 build=$2 sph=$3
-fails=0 passes=0
-ok() { passes=$((passes + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/checklib.sh"
 cd "$src" || exit 1
 user_docs=(README.md docs/*.md cases/*/*/README.md riemann/include/sabre/*.h fv1d/include/sabre/*.h
            sph/include/sabre/*.h common/include/sabre/*.h)
@@ -57,5 +53,4 @@ else bad "cases/fv1d/dam_break_stoker/check: $(tail -3 "$tmp/check.log")"; fi
   bad "check did not write into $build/cases/fv1d/dam_break_stoker"
 new=$(find cases -newer "$tmp/marker" -print)
 [ -z "$new" ] && ok || bad "check wrote into the source tree: $new"
-echo "$passes passed, $fails failed"
-[ $fails -eq 0 ]
+finish

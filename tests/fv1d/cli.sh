@@ -5,11 +5,7 @@
 # Usage: cli.sh PATH/TO/sabre-fv1d BUILD_DIR SOURCE_DIR
 set -u
 tool=$1 build=$2 src=$3
-fails=0 passes=0
-ok() { passes=$((passes + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../checklib.sh"
 cat >"$tmp/case.yaml" <<'YAML'
 domain: {x_min: -1.0, x_max: 1.0, cells: 40}
 fluid: {rho0: 1.0, c0: 3.13, xi: 2}
@@ -63,5 +59,4 @@ hasnt 'error: /' err
 if cmake --install "$build" --prefix "$tmp/prefix" >"$tmp/install.log" 2>&1 &&
    [ -x "$tmp/prefix/bin/sabre-fv1d" ] && "$tmp/prefix/bin/sabre-fv1d" --version >/dev/null; then ok
 else bad "cmake --install does not install a working bin/sabre-fv1d"; fi
-echo "$passes passed, $fails failed"
-[ $fails -eq 0 ]
+finish

@@ -3,10 +3,8 @@
 # with exit code 2 for bad input. Usage: cli.sh PATH/TO/sabre-riemann
 set -u
 tool=$1
-fails=0; passes=0
+. "$(dirname "$0")/../checklib.sh"
 py=/usr/bin/python3
-ok() { passes=$((passes + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
 
 # json_check 'python expression over d' args...: runs the tool, parses stdout as JSON
 json_check() {
@@ -112,5 +110,4 @@ if [ -w /dev/full ]; then
   rc=$?; [ $rc -eq 1 ] && ok || bad "--help > /dev/full: exit $rc (want 1)"
 fi
 rm -f /tmp/cli_err.$$
-echo "$passes passed, $fails failed"
-[ $fails -eq 0 ]
+finish

@@ -6,11 +6,7 @@
 # Usage: cli.sh PATH/TO/sabre-sph SOURCE_DIR
 set -u
 tool=$1 src=$2
-fails=0 passes=0
-ok() { passes=$((passes + 1)); }
-bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../checklib.sh"
 cat >"$tmp/case.yaml" <<'YAML'
 geometry:
   dimension: 2
@@ -130,5 +126,4 @@ if [ -w /dev/full ]; then
   timeout 20 "$tool" --help >/dev/full 2>/dev/null; rc=$?
   [ $rc -eq 1 ] && ok || bad "--help > /dev/full: exit $rc (want 1)"
 fi
-echo "$passes passed, $fails failed"
-[ $fails -eq 0 ]
+finish

@@ -17,12 +17,14 @@ Facets run counter-clockwise seen from outside the water's domain (right-hand no
 of the solid the surface bounds, as the STL format requires): out of the tank's walls, into the
 obstacle.
 
-usage: make_tank_stl.py [FILE]   (default: tank.stl next to this script)"""
+usage: make_tank_stl.py [FILE] [--tank LX,LY,LZ] [--obstacle X0,X1,Y0,Y1,HEIGHT] [--name NAME]
+  FILE defaults to tank.stl next to this script; the other options default to SPHERIC test 2 and
+  also make the tank of sph/bench/bench_dambreak.c (DualSPHysics' CaseDambreak, see its header)."""
 import os
 import sys
 
-LX, LY, LZ = 3.22, 1.0, 1.0                   # tank (Kleefsman et al. 2005, Fig. 2)
-OX, OY, OZ = (0.6635, 0.8245), (0.2985, 0.7015), 0.161   # obstacle 0.161 x 0.403 x 0.161 m
+TANK = (3.22, 1.0, 1.0)                       # tank (Kleefsman et al. 2005, Fig. 2)
+OBSTACLE = (0.6635, 0.8245, 0.2985, 0.7015, 0.161)   # x0, x1, y0, y1, height: 0.161 x 0.403 x 0.161 m
 CELL = 0.17                                   # target size of the coarse grid [m]
 
 
@@ -33,11 +35,6 @@ def breaks(points):
         n = max(1, round((b - a) / CELL))
         out += [a + (b - a) * k / n for k in range(1, n)] + [b]
     return out
-
-
-XS = breaks([0.0, OX[0], OX[1], LX])
-YS = breaks([0.0, OY[0], OY[1], LY])
-ZS = breaks([0.0, OZ, LZ])      # OZ among them keeps the grid of the side walls regular
 
 
 def sub(a, b):
@@ -70,7 +67,14 @@ def face(axis, level, normal, us, vs, skip=None):
     return tris
 
 
-def surface():
+def surface(tank=TANK, obstacle=OBSTACLE):
+    LX, LY, LZ = tank
+    OX, OY, OZ = obstacle[0:2], obstacle[2:4], obstacle[4]
+    if not (0 < OX[0] < OX[1] < LX and 0 < OY[0] < OY[1] < LY and 0 < OZ < LZ):
+        sys.exit("make_tank_stl.py: the obstacle must stand inside the tank, below its lid")
+    XS = breaks([0.0, OX[0], OX[1], LX])
+    YS = breaks([0.0, OY[0], OY[1], LY])
+    ZS = breaks([0.0, OZ, LZ])      # OZ among them keeps the grid of the side walls regular
     eps = 1e-12
     inside = [v for v in XS if OX[0] - eps <= v <= OX[1] + eps]
     ys_o = [v for v in YS if OY[0] - eps <= v <= OY[1] + eps]
@@ -91,11 +95,37 @@ def surface():
     return tris
 
 
+def numbers(text, count, option):
+    try:
+        vals = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        vals = ()
+    if len(vals) != count:
+        sys.exit("make_tank_stl.py: %s expects %d comma-separated numbers, got '%s'"
+                 % (option, count, text))
+    return vals
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    path = sys.argv[1] if len(sys.argv) >= 2 else os.path.join(here, "tank.stl")
-    lines = ["solid spheric_test2"]
-    for tri in surface():
+    path, tank, obstacle, name = os.path.join(here, "tank.stl"), TANK, OBSTACLE, "spheric_test2"
+    args = sys.argv[1:]
+    while args:
+        arg = args.pop(0)
+        if arg in ("--tank", "--obstacle", "--name") and not args:
+            sys.exit("make_tank_stl.py: %s needs a value" % arg)
+        if arg == "--tank":
+            tank = numbers(args.pop(0), 3, arg)
+        elif arg == "--obstacle":
+            obstacle = numbers(args.pop(0), 5, arg)
+        elif arg == "--name":
+            name = args.pop(0)
+        elif arg.startswith("-"):
+            sys.exit("make_tank_stl.py: unknown option %s" % arg)
+        else:
+            path = arg
+    lines = ["solid " + name]
+    for tri in surface(tank, obstacle):
         n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))
         norm = sum(c * c for c in n) ** 0.5
         lines.append("  facet normal %g %g %g" % tuple(c / norm for c in n))
@@ -103,7 +133,7 @@ def main():
         lines += ["      vertex %.9g %.9g %.9g" % p for p in tri]
         lines.append("    endloop")
         lines.append("  endfacet")
-    lines.append("endsolid spheric_test2")
+    lines.append("endsolid " + name)
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("wrote %s (%d triangles)" % (path, len(lines) // 7))

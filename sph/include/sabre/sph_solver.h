@@ -234,6 +234,17 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim);
  * Solver state and step
  * ------------------------------------------------------------------------------------------- */
 
+/** Phases of a step timed by the solver (wall seconds accumulated in sph_solver.timing). */
+enum sph_phase {
+  SPH_PHASE_LISTS,      /**< neighbour lists (cell sort, pair lists) */
+  SPH_PHASE_WALLS,      /**< wall integrals γ_a, ∇γ_as (closed forms, J 2–4) */
+  SPH_PHASE_VERTEX,     /**< vertex and segment values (Shepard or least squares), M(16–17) */
+  SPH_PHASE_FORCES,     /**< pair loops of the momentum equation and the diffusion rate */
+  SPH_PHASE_CONTINUITY, /**< pair loop of the time-summation continuity, M(84) */
+  SPH_PHASE_STEP,       /**< the whole of sph_solver_step() (the rest is the integration) */
+  SPH_NPHASES
+};
+
 struct sph_solver {
   struct sph_config cfg;
   struct sph_system sys;
@@ -258,6 +269,8 @@ struct sph_solver {
   double vertex_phi;         /**< vertex layer thickness / Δr of the vertex masses [-] */
   double repack_residual[2]; /**< largest defect × h before and after the repacking [-] */
   size_t repack_fixed;       /**< fluid particles held by the repacking's lid */
+  double timing[SPH_NPHASES]; /**< wall seconds spent in each phase since set-up (the set-up's
+                                   own evaluations included; zero it to time a run of steps) */
   int *vert_bc; /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */
   size_t cap_vert_bc;
   /** First vertex whose value failed in the last sph_solver_boundary_values() (−1: none), its

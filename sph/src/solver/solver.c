@@ -53,17 +53,28 @@ void sph_solver_sync(struct sph_solver *sv) {
 
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
 
+/* Accumulate the wall time since t0 in phase ph; returns the current time. */
+static double timed(struct sph_solver *sv, enum sph_phase ph, double t0) {
+  const double t1 = cmn_wall_time();
+  sv->timing[ph] += t1 - t0;
+  return t1;
+}
+
 /* Lists, γ and ∇γ_as at the current positions. */
 static void neighbours(struct sph_solver *sv) {
   /* With the dynamic γ, γ is state: keep it through the lists' closed-form evaluation. */
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const int keep = sv->cfg.gamma_dynamic && sv->cap[SPH_KIND_FLUID] >= f->n && sv->gamma_n;
   if (keep) memcpy(sv->gamma_n, f->gamma, f->n * sizeof(double));
+  double t0 = cmn_wall_time();
   if (sv->gamma_current) {
     sph_nbrs_rebuild_reuse(&sv->nb, &sv->sys, &sv->kernel, skin(sv));
+    timed(sv, SPH_PHASE_LISTS, t0);
   } else {
     sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
+    t0 = timed(sv, SPH_PHASE_LISTS, t0);
     sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+    timed(sv, SPH_PHASE_WALLS, t0);
   }
   sv->gamma_current = 1;
   grow_arrays(sv);
@@ -85,7 +96,11 @@ static void gamma_dynamic(struct sph_solver *sv, const double *const v_new[3], d
   }
 }
 
-static void refresh_gamma(struct sph_solver *sv) { sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel); }
+static void refresh_gamma(struct sph_solver *sv) {
+  const double t0 = cmn_wall_time();
+  sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+  timed(sv, SPH_PHASE_WALLS, t0);
+}
 
 static double dot3(const double *a, const double *b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -172,7 +187,7 @@ static int robin_pressure(const struct sph_solver *sv, const struct sph_vertex_b
   return status;
 }
 
-void sph_solver_boundary_values(struct sph_solver *sv) {
+static void boundary_values_impl(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
   struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
@@ -312,7 +327,7 @@ static double diffusion_rate(const struct sph_solver *sv, size_t a) {
   return sum;
 }
 
-void sph_solver_forces(struct sph_solver *sv) {
+static void forces_impl(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *sg = &s->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nls = &sv->nb.list[SPH_KIND_SEGMENT];
@@ -390,7 +405,7 @@ double sph_solver_timestep(const struct sph_solver *sv) {
 /* ------------------------------------------------------------------------------------------- */
 
 /* γ_a ρ_a = γ^n ρ^n + Σ_{b∈P} m_b (w_ab − w_ab^n) + fac · D, J(10), M(84): positions now vs x0. */
-static void continuity(struct sph_solver *sv, double fac) {
+static void continuity_impl(struct sph_solver *sv, double fac) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_kernel *k = &sv->kernel;
@@ -472,6 +487,25 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
            step, sv->time, (long long)f->id[a], a, f->x[0][a], f->x[1][a], f->x[2][a], first_what,
            f->rho[a] / rho_ref, f->v[0][a], f->v[1][a], f->v[2][a], nbad, f->n);
   return -1;
+}
+
+/* The timed phases (sv->timing). */
+void sph_solver_boundary_values(struct sph_solver *sv) {
+  const double t0 = cmn_wall_time();
+  boundary_values_impl(sv);
+  timed(sv, SPH_PHASE_VERTEX, t0);
+}
+
+void sph_solver_forces(struct sph_solver *sv) {
+  const double t0 = cmn_wall_time();
+  forces_impl(sv);
+  timed(sv, SPH_PHASE_FORCES, t0);
+}
+
+static void continuity(struct sph_solver *sv, double fac) {
+  const double t0 = cmn_wall_time();
+  continuity_impl(sv, fac);
+  timed(sv, SPH_PHASE_CONTINUITY, t0);
 }
 
 void sph_solver_evaluate(struct sph_solver *sv) {
@@ -656,7 +690,16 @@ double sph_solver_flux_measure(const struct sph_solver *sv) {
   return vt;
 }
 
+static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen);
+
 int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
+  const double t0 = cmn_wall_time();
+  const int rc = step_impl(sv, dt_limit, msg, msglen);
+  timed(sv, SPH_PHASE_STEP, t0);
+  return rc;
+}
+
+static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   /* State n: lists, γ^n, boundary values, a^n, D^n, then Δt. */

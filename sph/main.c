@@ -11,6 +11,10 @@
  *   sabre-sph scalar CASE.yaml [--output DIR] [--set key=value ...]
  *       scalar wave equation on fixed particles with Robin/Neumann/Dirichlet walls
  *       (sph_cmd_scalar, sph/src/scalar/scalar.c; docs/sph-scalar.md).
+ *   sabre-sph wave stokes5|solitary [options] --at ... [--at ...]
+ *       wave generators (Stokes fifth order, solitary wave) at given points and times, one JSON
+ *       object per point on stdout (sph_cmd_wave, sph/src/analytic/wave_command.c;
+ *       docs/sph-waves.md). A public diagnostic: keep its options and output stable.
  *
  * The commands live in the library (sph_cmd_*) so that tests can run them. Exit codes: 0 success,
  * 2 bad input (CMN_EXIT_INPUT), 1 failure, 3 run stopped at time.max_steps (CMN_EXIT_INCOMPLETE).
@@ -24,6 +28,7 @@
 #include "sabre/sph.h"
 #include "sabre/sph_scalar.h"
 #include "sabre/sph_solver.h"
+#include "sabre/sph_waves.h"
 
 struct command {
   const char *name;
@@ -33,7 +38,8 @@ struct command {
 static const struct command commands[] = {{"run", sph_cmd_run},
                                           {"gamma", sph_cmd_gamma},
                                           {"mesh", sph_cmd_mesh},
-                                          {"scalar", sph_cmd_scalar}};
+                                          {"scalar", sph_cmd_scalar},
+                                          {"wave", sph_cmd_wave}};
 
 /*
  * OpenMP threads that wait for work spin by default; on a machine whose cores are busy with other
@@ -71,6 +77,7 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     if (strcmp(argv[1], commands[i].name) == 0)
       return cmn_stdout_status(commands[i].run(argc - 1, argv + 1));
-  cmn_input_error("unknown command '%s' (commands: run, gamma, mesh, scalar; see sabre-sph --help)",
-                  argv[1]);
+  cmn_input_error(
+      "unknown command '%s' (commands: run, gamma, mesh, scalar, wave; see sabre-sph --help)",
+      argv[1]);
 }

@@ -34,8 +34,14 @@ void sph_cmd_usage(FILE *out) {
       "  scalar CASE.yaml [--output DIR] [--set key=value ...]\n"
       "      Solve u_tt = c^2 Lap u on fixed particles with Robin/Neumann/Dirichlet walls\n"
       "      (docs/sph-scalar.md).\n"
+      "  wave stokes5 --depth D --height H (--length L | --period T) [--current U] --at X,Z,T ...\n"
+      "  wave solitary --depth D --amplitude A [--angle DEG] [--x0 X0] --at X,Y,Z,T ...\n"
+      "      Print the surface elevation, velocity and pressure of a fifth-order Stokes wave\n"
+      "      (Fenton 1985) or of the solitary wave of Joly et al. (2016) at each point, one JSON\n"
+      "      object per line (sabre-sph wave --help; docs/sph-waves.md).\n"
       "\n"
-      "See docs/sph-geometry.md, docs/sph-case-file.md and docs/sph-scalar.md.\n");
+      "See docs/sph-geometry.md, docs/sph-case-file.md, docs/sph-scalar.md and "
+      "docs/sph-waves.md.\n");
 }
 
 /* ------------------------------------------------------------------------------------------ */

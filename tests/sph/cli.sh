@@ -2,7 +2,8 @@
 # The sabre-sph command line as a user meets it: --help/--version, the default thread count and
 # wait policy, start-up and closing summaries, bounded inputs that stop at once instead of hanging
 # (time.output_interval, dr, huge walls, h_over_dr, self-crossing polygons), time.max_steps (exit
-# 3), messages that say why and where, and stdout write errors.
+# 3), messages that say why and where, the wave generators (`wave`: JSON lines, bad options), and
+# stdout write errors.
 # Usage: cli.sh PATH/TO/sabre-sph SOURCE_DIR
 set -u
 tool=$1 src=$2
@@ -41,7 +42,7 @@ run() { expect "$@"; hasnt "$src/" err; } # no message names a source file by it
 
 # --version, and --help on every command
 run 0 10 "$tool" --version; has '^sabre-sph [0-9]*\.[0-9]*\.[0-9]*$' out
-for c in run mesh scalar gamma; do run 0 10 "$tool" $c --help; has '^usage:' out; done
+for c in run mesh scalar gamma wave; do run 0 10 "$tool" $c --help; has '^usage:' out; done
 run 0 10 "$tool" --help; has 'sabre-sph <command> --help' out
 
 # the default: one thread with a passive wait policy, without --threads or OMP_* variables;
@@ -116,6 +117,54 @@ run 1 20 "$tool" run "$tmp/case.yaml" --output "$tmp/x2" --set 'initial.velocity
 has 'time step 0 s is not positive: fluid particle id .* non-finite state' err
 run 2 10 "$tool" run "$tmp/case.yaml" --output /dev/null/out
 has "cannot create the output directory '/dev/null/out': Not a directory" err
+
+# wave generators: one JSON object per --at point (parsed by Python, as tests/riemann/cli.sh does),
+# with the documented keys; values checked for consistency (the crest of J IV.B's wave at x = ct,
+# the period given back as a length, the solitary crest D + A with p = 0 on it)
+py=/usr/bin/python3
+# wave_json 'python expression over the list of objects d' args...
+wave_json() {
+  local expr=$1; shift
+  run 0 10 "$tool" wave "$@"
+  if $py -c "import json,sys; d=[json.loads(l) for l in open(sys.argv[1])]; sys.exit(0 if ($expr) else 1)" \
+       "$tmp/out" 2>>"$tmp/err"; then ok
+  else bad "wave $*: '$expr' fails on: $(head -c 600 "$tmp/out")"; fi
+}
+S5=(stokes5 --depth 0.5 --height 0.1 --length 2.5)
+wave_json 'len(d) == 3 and all(set(o) == {"x","z","t","eta","u","w","p","c","k","L","T","in_water"} for o in d)
+  and d[0]["in_water"] and abs(d[0]["eta"] - d[1]["eta"]) < 1e-12 and d[1]["x"] == d[1]["c"] * 0.7
+  and abs(d[1]["T"] - 2.5 / d[1]["c"]) < 1e-12 and d[2]["eta"] < 0.5 and d[0]["w"] == 0' \
+  "${S5[@]}" --at 0,0.3,0 --at "$($py -c 'print(1.8440565949008831*0.7)')",0.3,0.7 --at 1.25,0.2,0
+wave_json 'abs(d[0]["L"] - 2.5) < 1e-9 and abs(d[0]["eta"] - 0.5559024446561869) < 1e-9' \
+  stokes5 --depth 0.5 --amplitude 0.05 --period 1.3557067645932925 --at 0,0.2,0
+wave_json 'not d[0]["in_water"] and d[0]["p"] < 0 and d[1]["u"] is None' "${S5[@]}" --at 0,0.6,0 --at 0,9,0
+has 'above the free surface' err
+wave_json 'set(d[0]) == {"x","y","z","t","eta","u","v","w","p","c","k","in_water"}
+  and abs(d[0]["eta"] - 0.9) < 1e-12 and abs(d[0]["p"]) < 1e-9 and abs(d[0]["v"] - d[0]["u"]) < 1e-12
+  and abs(d[1]["p"] - 1000 * 9.81 * d[1]["eta"]) < 1e-9' \
+  solitary --depth 0.6 --amplitude 0.3 --angle 45 --x0 -1 --at "$($py -c 'import math; s=-1+math.sqrt(9.81*0.9)*0.4; print(f"{s/math.sqrt(2)!r},{s/math.sqrt(2)!r}")')",0.9,0.4 --at 0.2,0.1,0,0.4
+# bad input: exit 2, a message naming the option
+run 2 10 "$tool" wave; has 'wave needs a kind' err
+run 2 10 "$tool" wave cnoidal --depth 1; has "unknown kind 'cnoidal'" err
+run 2 10 "$tool" wave "${S5[@]}" --depth 0.6 --at 0,0,0; has '--depth given twice' err
+run 2 10 "$tool" wave "${S5[@]}" --at 0,0,0 --at 1,0,0 --colour red; has "unknown option '--colour'" err
+run 2 10 "$tool" wave "${S5[@]}" --current 1x --at 0,0,0; has "--current '1x': expected a number" err
+run 2 10 "$tool" wave "${S5[@]}" --at 0,0; has "--at '0,0': expected X,Z,T" err
+run 2 10 "$tool" wave "${S5[@]}"; has 'needs at least one --at' err
+run 2 10 "$tool" wave stokes5 --height 0.1 --length 2.5 --at 0,0,0; has 'needs --depth' err
+run 2 10 "$tool" wave stokes5 --depth 0.5 --length 2.5 --at 0,0,0; has '--height H or --amplitude' err
+run 2 10 "$tool" wave "${S5[@]}" --period 1 --at 0,0,0; has '--length L or --period T, not both' err
+run 2 10 "$tool" wave stokes5 --depth 0.5 --height 0.5 --length 2.5 --at 0,0,0
+has '--height: H/L = 0.2 exceeds the breaking limit' err
+run 2 10 "$tool" wave stokes5 --depth 0.5 --height 0.05 --length 10 --at 0,0,0
+has '--length: the wave is too long for the depth: Ursell number' err
+run 2 10 "$tool" wave stokes5 --depth 0.5 --height 0.05 --period 10 --at 0,0,0
+has '--period: T = 10 s gives a wave too long' err
+run 2 10 "$tool" wave "${S5[@]}" --current -3 --at 0,0,0; has '--current: .* not positive' err
+run 2 10 "$tool" wave solitary --depth 0.6 --amplitude 0.5 --at 0,0,0,0; has '--amplitude: A/D' err
+run 2 10 "$tool" wave solitary --depth 0 --amplitude 0.1 --at 0,0,0,0; has "--depth '0'" err
+run 2 10 "$tool" wave solitary --depth 0.6 --amplitude 0.3 --at 0,0,0; has 'expected X,Y,Z,T' err
+run 0 10 "$tool" wave stokes5 --help; has 'Fenton' out
 
 # results on stdout that cannot be written are a failure
 if [ -w /dev/full ]; then

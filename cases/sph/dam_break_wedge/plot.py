@@ -2,11 +2,12 @@
 """Dam break over a wedge (M §8): the pressure force on the left wedge wall over time with and
 without volume diffusion (the paper's Fig. 10), and the particles at the times of Fig. 11.
 
-usage: plot.py OUTPUT_DIR [--check]
-  OUTPUT_DIR holds the runs `ferrari/` (numerics.diffusion: ferrari, M 84) and `none/`, as written
-  by ./check (a single run directory with forces.csv is plotted alone). Writes
+usage: plot.py OUTPUT_DIR [--check [--quick]]
+  OUTPUT_DIR holds the runs `ferrari/` (numerics.diffusion: ferrari, M 84), `none/` and `fine/`
+  (ferrari at dr = 0.0125 m), as written by ./check (a single run directory with forces.csv is plotted alone). Writes
   OUTPUT_DIR/dam_break_wedge_force.png and OUTPUT_DIR/dam_break_wedge_snapshots.png and prints the
-  figures quoted in README.md. --check: exit status 1 unless every criterion of README.md holds.
+  figures quoted in README.md. --check: exit status 1 unless every criterion of README.md holds
+(--quick: without the run at dr = 0.0125 m).
 
 The force is the one the paper plots, the integral of the pressure along the wall: forces.csv gives
 the vector F of the fluid on the wall (wall group `wedge_left`); its component along the wall's
@@ -30,7 +31,10 @@ from sabre_output import Checks, read_csv, read_pvd, read_vtu  # noqa: E402
 RHO0, C0, XI, G, H_COL = 1000.0, 40.0, 7.0, 9.81, 1.0
 WALL_L = 0.25  # side of the equilateral wedge [m]
 PUSH = (math.sin(math.radians(60.0)), -math.cos(math.radians(60.0)))  # out of the fluid
-RUNS = (("ferrari", "with volume diffusion M(84)"), ("none", "without volume diffusion"))
+RUNS = (("ferrari", "with volume diffusion M(84)"), ("none", "without volume diffusion"),
+        ("fine", "with volume diffusion, dr = 0.0125 m"))
+COLORS = {"ferrari": "tab:blue", "none": "tab:orange", "fine": "tab:green", ".": "tab:blue"}
+DIFFUSED = ("ferrari", "fine")  # the runs with diffusion (and their labels in the criteria)
 SNAP_TIMES = (0.25, 0.5, 0.75, 1.1, 2.0, 2.5)  # Fig. 11 has 0.5, 0.75, 1.1 and 2.5 s
 
 
@@ -95,9 +99,10 @@ def main():
     res = {}
     # the noise is compared over the time both runs have (the run without diffusion may stop)
     t_common = min(force(os.path.join(out, name))[0][-1] for name, _ in runs)
-    for name, label in reversed(runs):  # the run with diffusion drawn last, on top
+    order = sorted(runs, key=lambda r: r[0] != "none")  # without diffusion first, under the others
+    for name, label in order:
         t, f = force(os.path.join(out, name))
-        ax.plot(t, f, lw=0.8, label=label, color="tab:orange" if name == "none" else "tab:blue")
+        ax.plot(t, f, lw=0.8, label=label, color=COLORS[name])
         res[name] = figures(t, f, t_common)
         d = read_csv(os.path.join(out, name, "diagnostics.csv"))
         res[name]["mass"] = d["mass"]
@@ -160,15 +165,19 @@ def main():
         checks.require(t_ritter <= r["t_hit"] <= 0.3,
                 "%s: the front reaches the wedge after Ritter's ideal front (%.3f s), before 0.3 s"
                 % (label, t_ritter))
-    if "ferrari" in res:
-        r = res["ferrari"]
-        checks.require(r["end"] >= 2.0 - 1e-9, "with diffusion: the run reaches 2 s")
+    for name in DIFFUSED:
+        if name not in res:
+            if name == "fine" and len(runs) > 1 and "--quick" not in sys.argv:
+                checks.require(False, "the run at dr = 0.0125 m present (fine/)")
+            continue
+        r, label = res[name], dict(RUNS)[name]
+        checks.require(r["end"] >= 2.0 - 1e-9, "%s: the run reaches 2 s" % label)
         checks.require(0.8 <= r["late"] / f_rest <= 1.5,
-                "with diffusion: mean force over 1.5-2 s is 0.8-1.5 x the hydrostatic force at "
-                "rest (settling)")
-        checks.require(0.4 <= res["ferrari"]["peak"] / f_scale <= 1.5,
-                "with diffusion: peak of the 0.02 s mean force 0.4-1.5 rho g H L (dam-break "
-                "pressures are of order rho g H)")
+                "%s: mean force over 1.5-2 s is 0.8-1.5 x the hydrostatic force at "
+                "rest (settling)" % label)
+        checks.require(0.4 <= r["peak"] / f_scale <= 1.5,
+                "%s: peak of the 0.02 s mean force 0.4-1.5 rho g H L (dam-break "
+                "pressures are of order rho g H)" % label)
     if "none" in res:
         checks.require(res["none"]["end"] >= 1.0, "without diffusion: the run reaches at least 1 s")
     if "none" in res and "ferrari" in res:

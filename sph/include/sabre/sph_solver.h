@@ -188,6 +188,8 @@ struct sph_config {
   int gravity_correction; /**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
                                (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
   int vertex_hydro;       /**< enum sph_vertex_hydro */
+  int wall_impedance;     /**< 1: the wall value of a fluid–wall pair is raised by ρ_a c_a |u_n|
+                               while the particle approaches the wall (docs/sph-solver.md §4) */
   int gamma_dynamic;      /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
   int vertex_volume;      /**< enum sph_vertex_volume */
   double vertex_layer;    /**< thickness of the wall layer of the vertex volumes [Δr] */
@@ -261,6 +263,7 @@ struct sph_solver {
   double *grad_gamma_n[3]; /**< fluid ∇γ^n (for the dynamic γ) */
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
+  double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
   double *wall_flux[3];    /**< per F–S pair: viscous wall flux, M(19–20) */
   size_t cap_flux;
   int *seg_group;  /**< force group of each segment (−1 none) */

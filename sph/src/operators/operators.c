@@ -13,8 +13,19 @@
 
 /* Grad^{γ,k}_a(f), M(37); with push_only, a wall pair (vertex or segment) whose weighted sum
  * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out (sph_op_grad_pressure). */
+/* Relative normal velocity (v_a − v_w)·n/|n| of fluid particle a towards wall element j of pw
+ * (n into the fluid: negative when a approaches the wall). */
+static double approach(const struct sph_parts *pa, size_t a, const struct sph_parts *pw, size_t j) {
+  double un = 0.0, nn = 0.0;
+  for (int c = 0; c < 3; c++) {
+    un += (pa->v[c][a] - pw->v[c][j]) * pw->normal[c][j];
+    nn += pw->normal[c][j] * pw->normal[c][j];
+  }
+  return nn > 0.0 ? un / sqrt(nn) : 0.0;
+}
+
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int push_only, double out[3]) {
+                 int push_only, const double *impedance, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
@@ -28,7 +39,12 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr)) continue;
       const double rho_b = pb->rho[b], vb = pb->mass[b] / rho_b;
       const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
-      const double sum = ratio * f[kind][b] + fa / ratio;
+      double fb = f[kind][b];
+      if (impedance && kind == SPH_KIND_VERTEX) {
+        const double un = approach(pa, a, pb, b);
+        if (un < 0.0) fb -= impedance[a] * un;
+      }
+      const double sum = ratio * fb + fa / ratio;
       if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
       const double t = vb * sum * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
@@ -39,7 +55,12 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
   for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
     size_t j = nl->index[q];
     const double ratio = sph_rho_ratio_k(rho_a, ps->rho[j], k);
-    const double t = ratio * f[SPH_KIND_SEGMENT][j] + fa / ratio;
+    double fs = f[SPH_KIND_SEGMENT][j];
+    if (impedance) {
+      const double un = approach(pa, a, ps, j);
+      if (un < 0.0) fs -= impedance[a] * un;
+    }
+    const double t = ratio * fs + fa / ratio;
     if (push_only && t < 0.0) continue;
     for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
   }
@@ -49,12 +70,12 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 
 void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
                  double out[3]) {
-  grad(op, k, f, a, 0, out);
+  grad(op, k, f, a, 0, NULL, out);
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, double out[3]) {
-  grad(op, k, p, a, 1, out);
+                          size_t a, const double *impedance, double out[3]) {
+  grad(op, k, p, a, 1, impedance, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }

@@ -19,8 +19,15 @@
  * recede (a free surface at a wall) moves into the wall, γ_a falls with Σ m_b w_ab and its
  * density stays at ρ0. Fluid–fluid pairs are kept as they are. Equals sph_op_grad() wherever
  * the wall pressure sums are ≥ 0 (still water below its surface).
+ *
+ * impedance (NULL: none) [kg/m²/s], per fluid particle: Z_a = ρ_a c_a. When given, the wall value
+ * of a pair whose fluid particle approaches the element, u_n = (v_a − v_w)·n < 0 (n the element's
+ * unit normal into the fluid; a vertex's normal normalised), is raised by −Z_a u_n: the pressure
+ * behind the acoustic wave that brings the relative normal velocity to zero, the linearised
+ * boundary Riemann problem with the wall's normal velocity imposed (docs/sph-solver.md §4). A
+ * receding particle sees the wall value unchanged.
  */
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, double out[3]);
+                          size_t a, const double *impedance, double out[3]);
 
 #endif

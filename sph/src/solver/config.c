@@ -279,6 +279,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const hydros[] = {"none", "full", "tangential", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
                           &cfg->vertex_hydro));
+  static const char *const impedances[] = {"none", "acoustic", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, 0, &cfg->wall_impedance));
   static const char *const gammas[] = {"analytic", "dynamic", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.gamma", gammas, 0, &cfg->gamma_dynamic));
   static const char *const vvols[] = {"geometric", "fitted", NULL};

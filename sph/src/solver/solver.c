@@ -35,6 +35,7 @@ static void grow_arrays(struct sph_solver *sv) {
       sv->rho_n = grow(sv->rho_n, cap);
       sv->gamma_n = grow(sv->gamma_n, cap);
       sv->diff = grow(sv->diff, cap);
+      sv->impedance = grow(sv->impedance, cap);
     }
     sv->cap[k] = cap;
   }
@@ -196,6 +197,7 @@ static void boundary_values_impl(struct sph_solver *sv) {
   for (size_t a = 0; a < f->n; a++) {
     s->part[SPH_KIND_FLUID].p[a] = rmn_eos_pressure(eos, f->rho[a]);
     sv->mu[SPH_KIND_FLUID][a] = nu * f->rho[a];
+    sv->impedance[a] = f->rho[a] * rmn_eos_sound_speed(eos, f->rho[a]);
   }
   /* Shepard M(16–17) with the hydrostatic correction p_b + ρ_b g·(r_v − r_b) (full) or its part
    * tangential to the wall, M(83). */
@@ -361,7 +363,9 @@ static void forces_impl(struct sph_solver *sv) {
 #endif
   for (size_t a = 0; a < f->n; a++) {
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
-    sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, gp); /* walls push, never pull */
+    /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
+    sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
+                         gp);
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

@@ -134,12 +134,13 @@ static void run(double dr, long steps, int threads) {
   const double rest = wall - t[SPH_PHASE_LISTS] - t[SPH_PHASE_WALLS] - t[SPH_PHASE_VERTEX] -
                       t[SPH_PHASE_FORCES] - t[SPH_PHASE_CONTINUITY];
   const double ms = done > 0 ? 1e3 / (double)done : NAN;
-  printf("| %6.4f | %d | %7zu | %6zu | %6zu | %3.0f / %3.0f / %3.0f | %9.3e | %9.3e | %8.1f | "
-         "%6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %5.0f |\n",
-         dr, threads, nf, nv, ns, mean[0], mean[1], mean[2], (double)nf * (double)done / wall,
-         pairs / wall, wall * ms, t[SPH_PHASE_LISTS] * ms, t[SPH_PHASE_WALLS] * ms,
-         t[SPH_PHASE_VERTEX] * ms, t[SPH_PHASE_FORCES] * ms, t[SPH_PHASE_CONTINUITY] * ms,
-         rest * ms, peak_rss_bytes() / (double)(nf + nv + ns));
+  printf(
+      "| %6.4f | %d | %7zu | %6zu | %6zu | %3.0f / %3.0f / %3.0f | %9.3e | %9.3e | %8.1f | "
+      "%6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %5.0f |\n",
+      dr, threads, nf, nv, ns, mean[0], mean[1], mean[2], (double)nf * (double)done / wall,
+      pairs / wall, wall * ms, t[SPH_PHASE_LISTS] * ms, t[SPH_PHASE_WALLS] * ms,
+      t[SPH_PHASE_VERTEX] * ms, t[SPH_PHASE_FORCES] * ms, t[SPH_PHASE_CONTINUITY] * ms, rest * ms,
+      peak_rss_bytes() / (double)(nf + nv + ns));
   fflush(stdout);
   sph_solver_free(sv);
   free(sv);
@@ -153,8 +154,10 @@ static int parse_list(const char *opt, const char *text, double *out) {
     char *end;
     const double v = strtod(p, &end);
     if (end == p || !(v > 0.0) || !isfinite(v) || n == MAXLIST || (*end && *end != ',')) {
-      fprintf(stderr, "bench-dambreak: %s: expected up to %d positive numbers separated by "
-                      "commas, got '%s'\n", opt, MAXLIST, text);
+      fprintf(stderr,
+              "bench-dambreak: %s: expected up to %d positive numbers separated by "
+              "commas, got '%s'\n",
+              opt, MAXLIST, text);
       exit(2);
     }
     out[n++] = v;
@@ -188,12 +191,14 @@ int main(int argc, char **argv) {
     }
     i++;
   }
-  printf("bench-dambreak: DualSPHysics' CaseDambreak geometry, %s steps from t = 0 "
-         "(ms per step; walls = gamma and grad gamma_as; rest = integration and checks)\n",
-         "fixed");
-  printf("| dr m | thr | fluid | vertices | segments | neighbours F / V / S | fluid "
-         "particle-steps/s | F-F interactions/s | ms/step | lists | walls | vertex | forces | "
-         "continuity | rest | peak B/particle |\n");
+  printf(
+      "bench-dambreak: DualSPHysics' CaseDambreak geometry, %s steps from t = 0 "
+      "(ms per step; walls = gamma and grad gamma_as; rest = integration and checks)\n",
+      "fixed");
+  printf(
+      "| dr m | thr | fluid | vertices | segments | neighbours F / V / S | fluid "
+      "particle-steps/s | F-F interactions/s | ms/step | lists | walls | vertex | forces | "
+      "continuity | rest | peak B/particle |\n");
   printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < ndr; i++)
     for (int t = 0; t < nthr; t++)

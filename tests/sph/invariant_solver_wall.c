@@ -165,9 +165,10 @@ static void test_wall_impedance(void **state) {
   sph_op_grad_pressure(&op, cfg.grad_k, pr, a, NULL, g2);
   for (int c = 0; c < 2; c++) assert_rel(g1[c], g2[c], 1e-13);
   const double push0 = -g0[0] / f->rho[a], push1 = -g1[0] / f->rho[a];
-  print_message("wall impedance: a_x of a particle Δr from the wall at rest %+.3f m/s², "
-                "approaching at 0.2 m/s %+.3f m/s² (Z = %.4g kg/m²/s)\n",
-                push0, push1, sv.impedance[a]);
+  print_message(
+      "wall impedance: a_x of a particle Δr from the wall at rest %+.3f m/s², "
+      "approaching at 0.2 m/s %+.3f m/s² (Z = %.4g kg/m²/s)\n",
+      push0, push1, sv.impedance[a]);
   assert_true(push1 > push0 + 100.0);
   for (int k = 0; k < SPH_NKINDS; k++) free(praised[k]);
   sph_solver_free(&sv);

@@ -269,9 +269,9 @@ struct sph_solver {
   int *seg_group;  /**< force group of each segment (−1 none) */
   int *vert_group; /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
-  double vertex_phi;         /**< vertex layer thickness / Δr of the vertex masses [-] */
-  double repack_residual[2]; /**< largest defect × h before and after the repacking [-] */
-  size_t repack_fixed;       /**< fluid particles held by the repacking's lid */
+  double vertex_phi;          /**< vertex layer thickness / Δr of the vertex masses [-] */
+  double repack_residual[2];  /**< largest defect × h before and after the repacking [-] */
+  size_t repack_fixed;        /**< fluid particles held by the repacking's lid */
   double timing[SPH_NPHASES]; /**< wall seconds spent in each phase since set-up (the set-up's
                                    own evaluations included; zero it to time a run of steps) */
   int *vert_bc; /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */

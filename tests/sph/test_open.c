@@ -246,6 +246,14 @@ static void test_parse_errors(void **state) {
     free(cfg);
   }
   expect_error("open_boundaries: {name: a}\n", "open_boundaries", "sequence");
+  expect_error(
+      "open_boundaries: [{name: a, wall: 0, faces: [x-], edges: [4], impose: pressure, "
+      "pressure: 0}]\n",
+      "open_boundaries[0].faces", "not both");
+  expect_error(
+      "open_boundaries: [{name: a, wall: 0, faces: [z-], impose: pressure, "
+      "pressure: 0}]\n",
+      "open_boundaries[0].faces[0]", "no such face in 2D");
 }
 
 /* sph_open_check_mesh on the meshed box of base2d (edges 1 bottom, 2 right, 3 top, 4 left). */
@@ -314,6 +322,22 @@ static void test_check_mesh(void **state) {
                    -1);
   assert_non_null(strstr(msg, "open_boundaries[1]"));
   assert_non_null(strstr(msg, "exactly one group"));
+  /* faces of a box instead of element numbers */
+  const char *box2 = "{type: box, lo: [0, 0], hi: [1, 0.5], open: [x-, x+]}";
+  assert_int_equal(check_mesh(box2,
+                              "open_boundaries: [{name: a, wall: 0, faces: [x-], impose: pressure, "
+                              "pressure: 0},\n  {name: b, wall: 0, faces: [x+], impose: pressure, "
+                              "pressure: 0}]\n",
+                              msg, sizeof msg),
+                   0);
+  assert_int_equal(check_mesh(box2,
+                              "open_boundaries: [{name: a, wall: 0, faces: [x-, y-], impose: "
+                              "pressure, pressure: 0}, {name: b, wall: 0, faces: [x+], impose: "
+                              "pressure, pressure: 0}]\n",
+                              msg, sizeof msg),
+                   -1);
+  assert_non_null(strstr(msg, "open_boundaries[0].faces"));
+  assert_non_null(strstr(msg, "is a wall, not open"));
   /* a whole wall without open elements */
   assert_int_equal(check_mesh("{type: box, lo: [0, 0], hi: [1, 0.5]}",
                               "open_boundaries: [{name: o, wall: 0, impose: pressure, pressure: "
@@ -723,6 +747,63 @@ static void test_solve_direct(void **state) {
   }
 }
 
+/* 3D: a box with its x+ face open at the hydrostatic pressure and the x- face at an imposed
+ * velocity vector; every point's values are the direct solve of its input, and the open vertices
+ * carry the imposed pressure at their own position with the face's normal. */
+static void test_solve_3d(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_solver *sv = solver_from_case(
+      "geometry:\n"
+      "  dimension: 3\n"
+      "  dr: 0.1\n"
+      "  h_over_dr: 1.3\n"
+      "  first_row: 1\n"
+      "  walls: [{type: box, lo: [0, 0, 0], hi: [0.6, 0.4, 0.5], open: [x-, x+]}]\n"
+      "  fluid: [{type: box, lo: [0, 0, 0], hi: [0.6, 0.4, 0.3]}]\n"
+      "fluid: {rho0: 1000, c0: 15}\n"
+      "gravity: [0, 0, -9.81]\n"
+      "initial: {pressure: hydrostatic}\n"
+      "time: {end: 1}\n"
+      "open_boundaries:\n"
+      "  - {name: out, wall: 0, faces: [x+], impose: pressure, hydrostatic: {depth: 0.35}}\n"
+      "  - {name: in, wall: 0, faces: [x-], impose: velocity, velocity: [0.05, 0.01, '0.1*z']}\n");
+  stir(sv, 0.03, 1e-4);
+  sph_solver_evaluate(sv);
+  assert_int_equal(sv->open->fail, 0);
+  struct rmn_params prm;
+  rmn_params_default(&prm);
+  struct rmn_workspace *ws = rmn_workspace_alloc();
+  size_t wet[2] = {0, 0};
+  for (int g = 0; g < 2; g++) {
+    const struct sph_open_points *pt = &sv->open->pts[g];
+    for (size_t k = 0; k < pt->npoints; k++) {
+      if (pt->slot[k] == (size_t)-1) continue;
+      const int is_seg = k < pt->nseg;
+      const struct sph_parts *pk = &sv->sys.part[is_seg ? SPH_KIND_SEGMENT : SPH_KIND_VERTEX];
+      const size_t i = pt->index[k];
+      struct rmn_boundary_result r;
+      assert_int_equal(rmn_boundary_solve(&sv->eos, &prm, ws, 3, &pt->in[pt->slot[k]], &r), 0);
+      assert_true(r.p == pk->p[i] && r.rho == pk->rho[i]);
+      for (int c = 0; c < 3; c++) assert_true(r.u[c] == pk->v[c][i]);
+      assert_abs(pt->normal[k][0], g == 0 ? -1.0 : 1.0, 1e-15);
+      if (g == 0 && !is_seg) { /* zero above the level */
+        const double d = 0.35 - pk->x[2][i];
+        assert_rel(pk->p[i], d > 0.0 ? sph_hydrostatic_pressure(&sv->eos, 9.81, d) : 0.0, 1e-14);
+      }
+      if (g == 1 && r.flow == RMN_FLOW_INFLOW) { /* the imposed vector's tangential part */
+        assert_rel(r.u[1], 0.01, 1e-13);
+        assert_rel(r.u[2], 0.1 * pk->x[2][i], 1e-13);
+      }
+      wet[g]++;
+    }
+  }
+  print_message("3D: %zu and %zu wet points\n", wet[0], wet[1]);
+  assert_true(wet[0] >= 20 && wet[1] >= 20);
+  rmn_workspace_free(ws);
+  solver_destroy(sv);
+}
+
 /* The exact shock branch and the acoustic relation p2 − p_int = ρ c (u2 − u_int) agree to second
  * order in the jump; the linearised option (p2 − p_int = ρ u_int (u_int − u2), a shock at rest)
  * does not: it differs at first order. A strong compression is a shock that satisfies the
@@ -938,6 +1019,7 @@ int main(void) {
       cmocka_unit_test(test_values_2d),
       cmocka_unit_test(test_values_3d),
       cmocka_unit_test(test_solve_direct),
+      cmocka_unit_test(test_solve_3d),
       cmocka_unit_test(test_linearised_exact),
       cmocka_unit_test(test_vertex_rule),
       cmocka_unit_test(test_failed_solve),

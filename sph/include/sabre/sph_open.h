@@ -85,8 +85,10 @@ struct sph_open_poiseuille {
 struct sph_open_group {
   char name[64];  /**< unique; the output is open_<name>.csv */
   int wall;       /**< index into geometry.walls */
-  int nedges;     /**< 0: every open element of that wall */
+  int nedges;     /**< 0: every open element of that wall (or of `faces`) */
   long edges[64]; /**< 1-based element numbers within the wall (each must be open) */
+  unsigned faces; /**< box and channel walls: the faces selected instead of `edges`, bit 2a the
+                       face at the low end of axis a, bit 2a + 1 the high end (0: none) */
   int imposed;    /**< enum rmn_imposed */
   int source;     /**< enum sph_open_source_kind */
   int shock;      /**< enum rmn_shock_model: RMN_SHOCK_EXACT (default) or RMN_SHOCK_LINEARISED */
@@ -133,9 +135,9 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
 
 /**
  * Check the groups against the wall mesh before anything is written: each selected element
- * exists and is flagged open (SPH_FLAG_OPEN), a group selects at least one element, and every
- * open element belongs to exactly one group. Element numbers are those of the mesh's sources
- * (source = wall index, source_index = element number). Errors name the file, line and key
+ * (or face) exists and is flagged open (SPH_FLAG_OPEN), a group selects at least one element,
+ * and every open element belongs to exactly one group. Element numbers are those of the mesh's
+ * sources (source = wall index, source_index = element number). Errors name the file, line and key
  * (`open_boundaries[i].edges`, or `geometry.walls[k]` for an open element no group selects).
  * Returns 0 or -1.
  */
@@ -288,6 +290,14 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
  * evaluation (the result would depend on the history, and a restart would not be bit-identical).
  */
 void sph_open_restore_walls(struct sph_open *op, struct sph_solver *sv);
+
+/**
+ * Does group g select the element of wall `wall`, number `edge` (1-based), with inward unit
+ * normal n and flags `flags`? By `edges`, by `faces` (the element's normal is the face's inward
+ * normal), or, with neither, when the element is open.
+ */
+int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, const double n[3],
+                           unsigned flags);
 
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
 #define SPH_OPEN_CSV_COLUMNS 12

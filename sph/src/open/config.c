@@ -409,6 +409,32 @@ static int read_value(struct cmn_case *c, const char *base, int dim, const doubl
   return 0;
 }
 
+/* `faces: [x-, ...]` of a box or channel wall, instead of `edges`. */
+static int read_faces(struct cmn_case *c, const char *base, int dim, struct sph_open_group *g) {
+  static const char *const names[] = {"x-", "x+", "y-", "y+", "z-", "z+", NULL};
+  char p[192], q[224], t[96];
+  key(p, sizeof p, base, "faces");
+  int n = cmn_case_seq_length(c, p);
+  if (n <= 0) return n;
+  if (g->nedges > 0) return cmn_case_fail(c, p, "give 'edges' or 'faces', not both");
+  const char *type;
+  snprintf(t, sizeof t, "geometry.walls[%d].type", g->wall);
+  TRY(cmn_case_get_string(c, t, &type));
+  if (strcmp(type, "box") != 0 && strcmp(type, "channel") != 0)
+    return cmn_case_fail(c, p,
+                         "faces select parts of a box or channel wall; geometry.walls[%d] is "
+                         "a %s (select its elements with 'edges')",
+                         g->wall, type);
+  for (int i = 0; i < n; i++) {
+    int f;
+    snprintf(q, sizeof q, "%s[%d]", p, i);
+    TRY(cmn_case_get_choice(c, q, names, &f));
+    if (f >= 2 * dim) return cmn_case_fail(c, q, "no such face in %dD", dim);
+    g->faces |= 1u << f;
+  }
+  return 0;
+}
+
 int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim,
                          const double gravity[3], const struct rmn_eos *eos) {
   memset(oc, 0, sizeof *oc);
@@ -452,6 +478,7 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
       TRY(cmn_case_get_long(c, q, 1, 1000000000L, &g->edges[e]));
     }
     g->nedges = ne;
+    TRY(read_faces(c, base, dim, g));
     static const char *const imposes[] = {"pressure", "velocity", NULL};
     int imposed;
     TRY(cmn_case_get_choice(c, key(p, sizeof p, base, "impose"), imposes, &imposed));
@@ -468,13 +495,29 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
   return 0;
 }
 
+/* The inward normal of face f of a box (bit numbering of `faces`) is ±e_a. */
+static int on_face(unsigned faces, const double n[3]) {
+  for (int f = 0; f < 6; f++) {
+    if (!(faces >> f & 1u)) continue;
+    const double want = f % 2 ? -1.0 : 1.0; /* the low face's normal points up the axis */
+    if (fabs(n[f / 2] - want) < 1e-9) return 1;
+  }
+  return 0;
+}
+
+int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, const double n[3],
+                           unsigned flags) {
+  if (wall != g->wall) return 0;
+  if (g->faces) return on_face(g->faces, n);
+  if (g->nedges == 0) return (flags & SPH_FLAG_OPEN) != 0;
+  for (int k = 0; k < g->nedges; k++)
+    if (g->edges[k] == edge) return 1;
+  return 0;
+}
+
 /* Does group g select mesh element e (wall source[e], element number source_index[e])? */
 static int selects(const struct sph_open_group *g, const struct sph_mesh *m, size_t e) {
-  if (m->source[e] != g->wall) return 0;
-  if (g->nedges == 0) return (m->flags[e] & SPH_FLAG_OPEN) != 0;
-  for (int k = 0; k < g->nedges; k++)
-    if (g->edges[k] == m->source_index[e]) return 1;
-  return 0;
+  return sph_open_group_selects(g, m->source[e], m->source_index[e], m->normal[e], m->flags[e]);
 }
 
 int sph_open_check_mesh(const struct sph_open_config *oc, struct cmn_case *c,
@@ -485,7 +528,21 @@ int sph_open_check_mesh(const struct sph_open_config *oc, struct cmn_case *c,
     const struct sph_open_group *g = &oc->group[i];
     size_t count = 0;
     for (size_t e = 0; e < m->nelem; e++) count += (size_t)selects(g, m, e);
-    if (g->nedges == 0 && count == 0) {
+    if (g->faces) {
+      for (size_t e = 0; e < m->nelem; e++)
+        if (selects(g, m, e) && !(m->flags[e] & SPH_FLAG_OPEN)) {
+          snprintf(p, sizeof p, "open_boundaries[%d].faces", i);
+          return cmn_case_fail(c, p,
+                               "a selected face of geometry.walls[%d] is a wall, not open (list "
+                               "it in the wall's 'open')",
+                               g->wall);
+        }
+      if (count == 0) {
+        snprintf(p, sizeof p, "open_boundaries[%d].faces", i);
+        return cmn_case_fail(c, p, "selects no element of geometry.walls[%d]", g->wall);
+      }
+    }
+    if (g->nedges == 0 && !g->faces && count == 0) {
       snprintf(p, sizeof p, "open_boundaries[%d].wall", i);
       return cmn_case_fail(c, p,
                            "geometry.walls[%d] has no open element (flag faces or edges with "

@@ -35,11 +35,9 @@ static int fail_create(int *failed, char *msg, size_t msglen, struct sph_open *o
 /* Does group g select segment j? */
 static int selects(const struct sph_open_group *g, const struct sph_parts *sg, size_t j,
                    const int *seg_wall, const long *seg_edge) {
-  if (!seg_wall || seg_wall[j] != g->wall) return 0;
-  if (g->nedges == 0) return (sg->flags[j] & SPH_FLAG_OPEN) != 0;
-  for (int k = 0; k < g->nedges; k++)
-    if (seg_edge && g->edges[k] == seg_edge[j]) return 1;
-  return 0;
+  if (!seg_wall) return 0;
+  const double n[3] = {sg->normal[0][j], sg->normal[1][j], sg->normal[2][j]};
+  return sph_open_group_selects(g, seg_wall[j], seg_edge ? seg_edge[j] : 0, n, sg->flags[j]);
 }
 
 struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wall,

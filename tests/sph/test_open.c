@@ -1010,20 +1010,46 @@ static void test_still_water(void **state) {
   solver_destroy(sv[1]);
 }
 
+/* `sabre-sph run` with a bad open_boundaries section: exit status 2, the key in the message, and
+ * no run directory written. */
+static char run_case[512], run_out[512];
+static void run_body(void) {
+  char *argv[] = {"run", run_case, "--output", run_out, NULL};
+  exit(sph_cmd_run(4, argv));
+}
+
+static void test_run_errors(void **state) {
+  (void)state;
+  const char *bad[][2] = {
+      {"open_boundaries: [{name: o, wall: 0, edges: [2, 3], impose: pressure, pressure: 0}]\n",
+       "open_boundaries[0].edges[1]: element 3 of geometry.walls[0] is a wall"},
+      {"", "geometry.walls[0]: its element 2 is open but no open_boundaries group"},
+      {"open_boundaries: [{name: o, wall: 0, impose: pressure, table: back.csv}]\n",
+       "open_boundaries[0].table: "}};
+  write_file("back.csv", "t,p\n0,0\n1,5\n0.5,2\n");
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    char text[4096];
+    snprintf(text, sizeof text, "%s%s", box_case, bad[i][0]);
+    snprintf(run_case, sizeof run_case, "%s", write_file("bad.yaml", text));
+    snprintf(run_out, sizeof run_out, "%s/out%zu", tmpdir, i);
+    char err[4096];
+    assert_int_equal(sabre_run_child(run_body, err, sizeof err), CMN_EXIT_INPUT);
+    print_message("%s", err);
+    if (!strstr(err, "bad.yaml:") || !strstr(err, bad[i][1]))
+      fail_msg("'%s' lacks '%s'", err, bad[i][1]);
+    assert_int_equal(access(run_out, F_OK), -1); /* nothing written */
+  }
+}
+
 int main(void) {
   cmn_set_program_name("test_open");
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_parse),
-      cmocka_unit_test(test_parse_errors),
-      cmocka_unit_test(test_check_mesh),
-      cmocka_unit_test(test_values_2d),
-      cmocka_unit_test(test_values_3d),
-      cmocka_unit_test(test_solve_direct),
-      cmocka_unit_test(test_solve_3d),
-      cmocka_unit_test(test_linearised_exact),
-      cmocka_unit_test(test_vertex_rule),
-      cmocka_unit_test(test_failed_solve),
-      cmocka_unit_test(test_still_water),
+      cmocka_unit_test(test_parse),       cmocka_unit_test(test_parse_errors),
+      cmocka_unit_test(test_check_mesh),  cmocka_unit_test(test_values_2d),
+      cmocka_unit_test(test_values_3d),   cmocka_unit_test(test_solve_direct),
+      cmocka_unit_test(test_solve_3d),    cmocka_unit_test(test_linearised_exact),
+      cmocka_unit_test(test_vertex_rule), cmocka_unit_test(test_failed_solve),
+      cmocka_unit_test(test_still_water), cmocka_unit_test(test_run_errors),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -250,6 +250,7 @@ struct sph_open {
   double (*wall_v)[3]; /**< per open vertex, in vertex order: the store's velocity at creation
                             (the wall's), which sph_open_restore_walls() puts back */
   struct rmn_workspace *ws;
+  double *work; /**< scratch of sph_open_boundary_values(): the Shepard sums of every point */
   /** First failure of the last evaluation: 0 none, else the riemann/ status; and its message
    *  (group, segment or vertex with its element and position, time, interior and imposed
    *  states). */

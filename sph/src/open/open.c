@@ -32,6 +32,12 @@ static int fail_create(int *failed, char *msg, size_t msglen, struct sph_open *o
   return 0;
 }
 
+/* Shepard sums of one point: Σ V_b w, Σ V_b w p̃_b (p_b with the hydrostatic correction),
+ * Σ V_b w p_b and Σ V_b w v_b. */
+struct shepard {
+  double alpha, p, p_raw, u[3];
+};
+
 /* Does group g select segment j? */
 static int selects(const struct sph_open_group *g, const struct sph_parts *sg, size_t j,
                    const int *seg_wall, const long *seg_edge) {
@@ -165,6 +171,9 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
       for (int c = 0; c < 3; c++) op->wall_v[q][c] = v->v[c][i];
       q++;
     }
+  size_t ntot = 0;
+  for (int g = 0; g < ng; g++) ntot += op->pts[g].npoints;
+  op->work = cmn_calloc((ntot + 1) * sizeof(struct shepard) / sizeof(double), sizeof(double));
   op->ws = rmn_workspace_alloc();
   if (!op->ws) cmn_error("riemann workspace: out of memory");
   for (int g = 0; g < ng; g++) op->stats[g].level = NAN;
@@ -196,6 +205,7 @@ void sph_open_free(struct sph_open *op) {
   free(op->vert_group);
   free(op->vert_point);
   free(op->wall_v);
+  free(op->work);
   rmn_workspace_free(op->ws);
   free(op);
 }
@@ -209,12 +219,6 @@ void sph_open_restore_walls(struct sph_open *op, struct sph_solver *sv) {
       q++;
     }
 }
-
-/* Shepard sums of one point: Σ V_b w, Σ V_b w p̃_b (p_b with the hydrostatic correction),
- * Σ V_b w p_b and Σ V_b w v_b. */
-struct shepard {
-  double alpha, p, p_raw, u[3];
-};
 
 static void shepard_add(struct shepard *sh, const struct sph_parts *f, size_t b,
                         const struct sph_pair *pr, int hydro, const double *gravity,
@@ -269,7 +273,8 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
    * centroid), in fluid order; vertices from the vertex → fluid lists. */
   size_t ntot = 0;
   for (int g = 0; g < ng; g++) ntot += op->pts[g].npoints;
-  struct shepard *sh = cmn_calloc(ntot + 1, sizeof *sh);
+  struct shepard *sh = (struct shepard *)op->work;
+  memset(sh, 0, ntot * sizeof *sh);
   size_t base[SPH_MAX_OPEN_GROUPS + 1];
   base[0] = 0;
   for (int g = 0; g < ng; g++) base[g + 1] = base[g] + op->pts[g].npoints;
@@ -410,7 +415,6 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     stt->un_int = m > 0.0 ? s_ui / m : NAN;
     stt->volume_flux = flux;
   }
-  free(sh);
 }
 
 const char *const *sph_open_csv_columns(void) {

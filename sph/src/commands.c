@@ -252,6 +252,7 @@ int sph_cmd_mesh(int argc, char **argv) {
   if (cmn_case_has(c, "fluid")) { /* a full run case: check the solver's sections too */
     struct sph_config cfg;
     sph_config_read(&cfg, c, g.dim);
+    sph_open_check_mesh(&cfg.open, c, &g.walls);
   }
   cmn_case_check_unused(c);
   cmn_cli_write_used(c, outdir);

@@ -24,6 +24,7 @@
 #include "sabre/riemann.h"
 #include "sabre/sph.h"
 #include "sabre/sph_flux.h"
+#include "sabre/sph_open.h"
 #include "sabre/sph_walls.h"
 
 struct cmn_case;
@@ -223,6 +224,8 @@ struct sph_config {
   double flux_width;     /**< slice width Δr_A [m] */
   double flux_area;      /**< cross-section A [m^(d−1)] */
   double flux_force0;    /**< initial driving acceleration F^0 [m/s²] */
+  /* open boundaries (section open_boundaries, sabre/sph_open.h) */
+  struct sph_open_config open;
 };
 
 /**
@@ -287,6 +290,11 @@ struct sph_solver {
   double flux_force;   /**< driving acceleration F^n of the last step, M(58)/M(63) [m/s²] */
   long evaluated_step; /**< step whose start state sph_solver_evaluate() saw, or −1 */
   int gamma_current;   /**< nb's wall data are those of the current positions */
+  /* open boundaries (sabre/sph_open.h): NULL without open groups */
+  struct sph_open *open;
+  double stage_time; /**< time of the state whose boundary values are evaluated: sv->time, or
+                          t + Δt/2 in the predictor [s] */
+  int open_off;      /**< 1 while the repacking runs: open segments keep their wall values */
 };
 
 /**

@@ -322,6 +322,11 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   /* vertex values and imposed flux (docs/sph-robin.md) */
   TRY(read_vertex_values(c, cfg));
   TRY(read_imposed_flux(c, cfg, dim));
+  /* open boundaries (sabre/sph_open.h) */
+  struct rmn_eos eos;
+  if (rmn_eos_init(&eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS)
+    return cmn_case_fail(c, "fluid", "invalid equation of state");
+  TRY(sph_open_config_read(&cfg->open, c, dim, cfg->gravity, &eos));
   return 0;
 }
 

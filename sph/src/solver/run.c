@@ -2,9 +2,9 @@
  * `sabre-sph run CASE.yaml [--set key=value]... [--output DIR] [--restart FILE] [--threads N]`:
  * reads the case (docs/sph-case-file.md), builds the particles, integrates to time.end and writes
  * into DIR: used_case.yaml, particles.pvd + fluid_/boundary_NNNNNN.vtu, diagnostics.csv,
- * probes.csv, forces.csv, checkpoint.bin (every N steps or minutes, at the end, on SIGINT/SIGTERM).
- * A failed step (NaN, particle through a wall, density out of band) writes a last output and a
- * diagnostics row, then stops with the message (exit code 1).
+ * probes.csv, forces.csv, open_<name>.csv per open boundary, checkpoint.bin (every N steps or
+ * minutes, at the end, on SIGINT/SIGTERM). A failed step (NaN, particle through a wall, density out
+ * of band) writes a last output and a diagnostics row, then stops with the message (exit code 1).
  */
 #include <errno.h>
 #include <math.h>
@@ -40,6 +40,7 @@ static const char usage[] =
 
 struct run_files {
   struct cmn_csv *diag, *probes, *forces;
+  struct cmn_csv *open[SPH_MAX_OPEN_GROUPS]; /**< open_<name>.csv per open boundary */
   struct sph_output vtu;
   char *dir;
 };
@@ -126,6 +127,12 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
                    : NULL;
   for (int i = 1; i < nf; i++) free(fn[i]);
   free(fn);
+  for (int g = 0; g < cfg->open.ngroups; g++) {
+    char name[96];
+    snprintf(name, sizeof name, "open_%s.csv", cfg->open.group[g].name);
+    rf->open[g] =
+        csv_open(rf->dir, name, SPH_OPEN_CSV_COLUMNS, sph_open_csv_columns(), restart, sv->time);
+  }
   if (sph_output_open(&rf->vtu, rf->dir, "particles") != 0)
     cmn_input_error("cannot create the output directory '%s': %s", rf->dir, strerror(errno));
   if (restart && rc->outputs > 0) {
@@ -136,7 +143,9 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
   }
 }
 
-static void write_rows(struct run_files *rf, struct sph_solver *sv) {
+/* One row of each CSV file for the current state (failed: the state of a failed step, not
+ * evaluated again). */
+static void write_rows(struct run_files *rf, struct sph_solver *sv, int failed) {
   const struct sph_config *cfg = &sv->cfg;
   struct sph_diagnostics d;
   sph_solver_diagnostics(sv, &d);
@@ -166,16 +175,31 @@ static void write_rows(struct run_files *rf, struct sph_solver *sv) {
     if (cmn_csv_row(rf->forces, vals))
       cmn_error("cannot write %s/forces.csv: %s", rf->dir, strerror(errno));
   }
+  if (sv->open) {
+    /* the open-boundary values of the current state (the next step reuses this evaluation);
+     * after a failed step, those of its last evaluation */
+    if (!failed && sv->evaluated_step != sv->step) sph_solver_evaluate(sv);
+    for (int g = 0; g < sv->open->ngroups; g++) {
+      double orow[SPH_OPEN_CSV_COLUMNS];
+      sph_open_csv_row(sv->open, g, sv->time, orow);
+      if (cmn_csv_row(rf->open[g], orow))
+        cmn_error("cannot write %s/open_%s.csv: %s", rf->dir, cfg->open.group[g].name,
+                  strerror(errno));
+    }
+  }
 }
 
 static void flush_files(struct run_files *rf) {
   cmn_csv_flush(rf->diag);
   if (rf->probes) cmn_csv_flush(rf->probes);
   if (rf->forces) cmn_csv_flush(rf->forces);
+  for (int g = 0; g < SPH_MAX_OPEN_GROUPS; g++)
+    if (rf->open[g]) cmn_csv_flush(rf->open[g]);
 }
 
 static void close_files(struct run_files *rf) {
   int bad = cmn_csv_close(rf->diag) | cmn_csv_close(rf->probes) | cmn_csv_close(rf->forces);
+  for (int g = 0; g < SPH_MAX_OPEN_GROUPS; g++) bad |= cmn_csv_close(rf->open[g]);
   sph_output_close(&rf->vtu);
   if (bad) cmn_error("an output CSV file could not be written completely");
 }
@@ -257,6 +281,7 @@ int sph_cmd_run(int argc, char **argv) {
   sph_geometry_read(&g, c);
   struct sph_config cfg;
   sph_config_read(&cfg, c, g.dim);
+  sph_open_check_mesh(&cfg.open, c, &g.walls); /* every open element in exactly one group */
   cmn_case_check_unused(c);
 
   struct sph_system s;
@@ -312,7 +337,7 @@ int sph_cmd_run(int argc, char **argv) {
   struct run_files rf = {.dir = (char *)output};
   open_files(&rf, sv, &rc, restart != NULL);
   if (!restart) {
-    write_rows(&rf, sv);
+    write_rows(&rf, sv, 0);
     write_vtu(&rf, &rc, sv, 0);
     rc.next_output = cfg.output_interval;
   }
@@ -328,7 +353,7 @@ int sph_cmd_run(int argc, char **argv) {
   while (sv->time < cfg.t_end - eps) {
     char msg[1024];
     if (sph_solver_step(sv, cfg.t_end - sv->time, msg, sizeof msg) != 0) {
-      write_rows(&rf, sv);
+      write_rows(&rf, sv, 1);
       write_vtu(&rf, &rc, sv, 1);
       flush_files(&rf);
       cmn_progress_report(&prog, sv->step, sv->time, sv->dt, (long)sv->sys.part[0].n, 1);
@@ -337,7 +362,7 @@ int sph_cmd_run(int argc, char **argv) {
       break;
     }
     int out = sv->time >= rc.next_output - eps || sv->time >= cfg.t_end - eps;
-    if (out || sv->step % cfg.diagnostics_every == 0) write_rows(&rf, sv);
+    if (out || sv->step % cfg.diagnostics_every == 0) write_rows(&rf, sv, 0);
     if (out) {
       write_vtu(&rf, &rc, sv, 0);
       /* the next multiple of the interval after now, in one step (no loop that a tiny interval

@@ -12,15 +12,6 @@
 #include "sabre/sph_solver.h"
 #include "sabre/sph_walls.h"
 
-/* Hydrostatic pressure at depth d ≥ 0 below the level of p = 0, exact for the Tait EOS:
- * dp/dd = ρ(p) |g|  ⇒  p = b [(1 + (ξ−1) |g| d / c0²)^(ξ/(ξ−1)) − 1]  (ξ = 1: b (e^{|g|d/c0²} −
- * 1)), b = ρ0 c0²/ξ. */
-static double hydrostatic_pressure(const struct rmn_eos *e, double g, double d) {
-  const double c2 = e->c0 * e->c0;
-  if (e->isothermal) return e->b * expm1(g * d / c2);
-  return e->b * expm1(e->xi / (e->xi - 1.0) * log1p((e->xi - 1.0) * g * d / c2));
-}
-
 /* An initial profile given as an expression of x, y, z (NULL for ""); sph_config_read() checked
  * the text, so a failure here is an internal error. */
 static struct cmn_expr *compile_initial(const char *text, const char *key, int dim) {
@@ -116,7 +107,7 @@ static double profile_density(const struct profile *pr, const double *x) {
   double p = 0.0;
   if (pr->hydrostatic && pr->gnorm > 0.0) {
     double depth = pr->level - (pr->up[0] * x[0] + pr->up[1] * x[1] + pr->up[2] * x[2]);
-    p = hydrostatic_pressure(pr->eos, pr->gnorm, fmax(depth, 0.0));
+    p = sph_hydrostatic_pressure(pr->eos, pr->gnorm, fmax(depth, 0.0));
   }
   if (pr->p_expr) p = cmn_expr_eval(pr->p_expr, x);
   const double pmin = rmn_eos_min_pressure(pr->eos);
@@ -202,6 +193,12 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_nbrs_gamma(&sv->nb, sys, &sv->kernel);
   sph_solver_sync(sv);
   sph_solver_vertex_groups(sv, seg_wall, seg_edge);
+  {
+    char msg[1024];
+    int failed;
+    sv->open = sph_open_create(sv, seg_wall, seg_edge, &failed, msg, sizeof msg);
+    if (failed) cmn_input_error("%s", msg);
+  }
   sph_solver_boundary_values(sv);
   vertex_masses_set(sv);
   sph_solver_boundary_values(sv);
@@ -262,6 +259,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->seg_group);
   free(sv->vert_group);
   free(sv->vert_bc);
+  sph_open_free(sv->open);
   sph_nbrs_free(&sv->nb);
   sph_system_free(&sv->sys);
   memset(sv, 0, sizeof *sv);

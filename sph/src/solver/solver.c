@@ -496,7 +496,12 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
 /* The timed phases (sv->timing). */
 void sph_solver_boundary_values(struct sph_solver *sv) {
   const double t0 = cmn_wall_time();
+  sph_open_restore_walls(sv->open, sv); /* open vertices: their wall velocity for the wall pass */
   boundary_values_impl(sv);
+  /* Open boundaries: the Riemann solve of J §III replaces the wall values of open segments and
+   * vertices (sabre/sph_open.h); not during the repacking, which needs walls at uniform pressure.
+   */
+  if (!sv->open_off) sph_open_boundary_values(sv->open, sv, sv->stage_time);
   timed(sv, SPH_PHASE_VERTEX, t0);
 }
 
@@ -513,6 +518,7 @@ static void continuity(struct sph_solver *sv, double fac) {
 }
 
 void sph_solver_evaluate(struct sph_solver *sv) {
+  sv->stage_time = sv->time;
   neighbours(sv);
   sph_solver_boundary_values(sv);
   sph_solver_forces(sv);
@@ -549,6 +555,7 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   double gravity[3];
   memcpy(gravity, sv->cfg.gravity, sizeof gravity);
   for (int c = 0; c < 3; c++) sv->cfg.gravity[c] = 0.0;
+  sv->open_off = 1; /* open segments are walls at the repacking's uniform pressure */
   for (size_t a = 0; a < n; a++) {
     f->rho[a] = rho_r;
     f->mass[a] = rho_r * vol;
@@ -645,6 +652,7 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   for (size_t i = 0; i < vx->n; i++) vx->mass[i] = mass_v[i];
   free(mass_v);
   memcpy(sv->cfg.gravity, gravity, sizeof gravity);
+  sv->open_off = 0;
   for (int c = 0; c < 3; c++)
     for (size_t a = 0; a < n; a++) f->v[c][a] = 0.0;
   size_t behind = 0, first = 0;
@@ -662,6 +670,10 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
 
 /* Stop the step when a vertex value could not be computed (docs/sph-robin.md §5). */
 static int vertex_failed(const struct sph_solver *sv, char *msg, size_t msglen) {
+  if (sv->open && sv->open->fail && !sv->open_off) { /* a failed open-boundary solve */
+    snprintf(msg, msglen, "step %ld, t = %.9g s: %s", sv->step + 1, sv->time, sv->open->fail_msg);
+    return -1;
+  }
   if (sv->vertex_fail < 0) return 0;
   snprintf(msg, msglen, "step %ld, t = %.9g s: %s", sv->step + 1, sv->time, sv->vertex_fail_msg);
   return -1;
@@ -749,6 +761,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   refresh_gamma(sv);
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
   continuity(sv, 0.5 * dt);
+  sv->stage_time = sv->time + 0.5 * dt; /* the predictor's state (open-boundary data) */
   sph_solver_boundary_values(sv);
   if (vertex_failed(sv, msg, msglen)) return -1;
   sph_solver_forces(sv);

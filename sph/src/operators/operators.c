@@ -40,7 +40,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       const double rho_b = pb->rho[b], vb = pb->mass[b] / rho_b;
       const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
       double fb = f[kind][b];
-      if (impedance && kind == SPH_KIND_VERTEX) {
+      if (impedance && kind == SPH_KIND_VERTEX && !(pb->flags[b] & SPH_FLAG_OPEN)) {
         const double un = approach(pa, a, pb, b);
         if (un < 0.0) fb -= impedance[a] * un;
       }
@@ -56,7 +56,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
     size_t j = nl->index[q];
     const double ratio = sph_rho_ratio_k(rho_a, ps->rho[j], k);
     double fs = f[SPH_KIND_SEGMENT][j];
-    if (impedance) {
+    if (impedance && !(ps->flags[j] & SPH_FLAG_OPEN)) { /* open values come from their solve */
       const double un = approach(pa, a, ps, j);
       if (un < 0.0) fs -= impedance[a] * un;
     }

@@ -25,7 +25,8 @@
  * unit normal into the fluid; a vertex's normal normalised), is raised by −Z_a u_n: the pressure
  * behind the acoustic wave that brings the relative normal velocity to zero, the linearised
  * boundary Riemann problem with the wall's normal velocity imposed (docs/sph-solver.md §4). A
- * receding particle sees the wall value unchanged.
+ * receding particle sees the wall value unchanged. Open elements (SPH_FLAG_OPEN) keep the values of
+ * their own Riemann solve.
  */
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
                           size_t a, const double *impedance, double out[3]);

@@ -305,9 +305,60 @@ static void nlist_reserve(struct sph_nlist *nl) {
   }
 }
 
+/* The work buffers of sph_nlist_build(), kept with the list so that a list rebuilt every step
+ * does not allocate (and fault in) its per-thread row buffers again. */
+struct sph_nlist_scratch {
+  int nthreads;
+  struct row_buffer {
+    size_t *data, n, cap;
+  } *buf;
+  int *cell_thread;
+  size_t *cell_at, ncells; /* cell arrays of ncells + 1 entries */
+};
+
+static void scratch_free(struct sph_nlist_scratch *sc) {
+  if (!sc) return;
+  for (int t = 0; t < sc->nthreads; t++) free(sc->buf[t].data);
+  free(sc->buf);
+  free(sc->cell_thread);
+  free(sc->cell_at);
+  free(sc);
+}
+
+/* The list's scratch, sized for nthreads threads and ncells cells. */
+static struct sph_nlist_scratch *scratch_get(struct sph_nlist *nl, int nthreads, size_t ncells) {
+  struct sph_nlist_scratch *sc = nl->scratch;
+  if (sc && sc->nthreads != nthreads) {
+    scratch_free(sc);
+    sc = NULL;
+  }
+  if (!sc) {
+    sc = cmn_calloc(1, sizeof *sc);
+    sc->nthreads = nthreads;
+    sc->buf = cmn_calloc((size_t)nthreads, sizeof *sc->buf);
+    /* Every buffer is allocated, even for a thread that will find no pair: the copy into place
+     * then always reads from a valid pointer (memcpy from NULL is undefined even for 0 bytes). */
+    for (int t = 0; t < nthreads; t++) {
+      sc->buf[t].cap = 1024;
+      sc->buf[t].data = cmn_malloc(sc->buf[t].cap * sizeof *sc->buf[t].data);
+    }
+    nl->scratch = sc;
+  }
+  if (!sc->cell_at || ncells > sc->ncells) {
+    free(sc->cell_thread);
+    free(sc->cell_at);
+    sc->cell_thread = cmn_malloc((ncells + 1) * sizeof *sc->cell_thread);
+    sc->cell_at = cmn_malloc((ncells + 1) * sizeof *sc->cell_at);
+    sc->ncells = ncells;
+  }
+  for (int t = 0; t < nthreads; t++) sc->buf[t].n = 0;
+  return sc;
+}
+
 void sph_nlist_free(struct sph_nlist *nl) {
   free(nl->offset);
   free(nl->index);
+  scratch_free(nl->scratch);
   memset(nl, 0, sizeof *nl);
 }
 
@@ -397,17 +448,10 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
 #ifdef _OPENMP
   nthreads = omp_get_max_threads();
 #endif
-  struct row_buffer {
-    size_t *data, n, cap;
-  } *buf = cmn_calloc((size_t)nthreads, sizeof *buf);
-  /* Every buffer is allocated, even for a thread that will find no pair: the copy below then
-   * always reads from a valid pointer (memcpy from NULL is undefined even for 0 bytes). */
-  for (int t = 0; t < nthreads; t++) {
-    buf[t].cap = 1024;
-    buf[t].data = cmn_malloc(buf[t].cap * sizeof *buf[t].data);
-  }
-  int *cell_thread = cmn_malloc((c->ncells + 1) * sizeof *cell_thread);
-  size_t *cell_at = cmn_malloc((c->ncells + 1) * sizeof *cell_at);
+  struct sph_nlist_scratch *sc = scratch_get(nl, nthreads, c->ncells);
+  struct row_buffer *buf = sc->buf;
+  int *cell_thread = sc->cell_thread;
+  size_t *cell_at = sc->cell_at;
 #ifdef _OPENMP
 #pragma omp parallel
 #endif
@@ -504,8 +548,4 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
       from += len;
     }
   }
-  for (int t = 0; t < nthreads; t++) free(buf[t].data);
-  free(buf);
-  free(cell_thread);
-  free(cell_at);
 }

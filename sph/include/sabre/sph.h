@@ -163,12 +163,15 @@ void sph_cells_free(struct sph_cells *c);
 
 /** Neighbour lists in compressed rows: neighbours of query particle i of kind `query` are the
  *  particles index[offset[i] .. offset[i+1]) of kind `other`. */
+struct sph_nlist_scratch;
+
 struct sph_nlist {
   enum sph_kind query, other;
   size_t n;       /**< number of query particles (rows) */
   size_t *offset; /**< n + 1 entries */
   size_t *index;
-  size_t capacity; /**< allocated length of index */
+  size_t capacity;                  /**< allocated length of index */
+  struct sph_nlist_scratch *scratch; /**< work buffers kept between builds (owned; NULL at first) */
 };
 
 /**

@@ -150,6 +150,8 @@ void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const str
     return;
   }
   memset(&nb->list[SPH_KIND_SEGMENT], 0, sizeof old);
+  nb->list[SPH_KIND_SEGMENT].scratch = old.scratch; /* the work buffers go on with the list */
+  old.scratch = NULL;
   for (int c = 0; c < 3; c++) nb->grad_gamma_as[c] = NULL;
   nb->term_as = nb->dist_as = NULL;
   nb->cap_pairs = 0;

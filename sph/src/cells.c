@@ -311,7 +311,7 @@ struct sph_nlist_scratch {
   int nthreads;
   struct row_buffer {
     size_t *data, n, cap;
-  } *buf;
+  } * buf;
   int *cell_thread;
   size_t *cell_at, ncells; /* cell arrays of ncells + 1 entries */
 };

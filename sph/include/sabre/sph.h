@@ -170,7 +170,7 @@ struct sph_nlist {
   size_t n;       /**< number of query particles (rows) */
   size_t *offset; /**< n + 1 entries */
   size_t *index;
-  size_t capacity;                  /**< allocated length of index */
+  size_t capacity;                   /**< allocated length of index */
   struct sph_nlist_scratch *scratch; /**< work buffers kept between builds (owned; NULL at first) */
 };
 

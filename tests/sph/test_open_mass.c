@@ -82,8 +82,9 @@ static double total_mass(const struct sph_solver *sv) {
   return m;
 }
 
-/* ṁ_v by hand from the store's solved segment values (the last evaluation): half of ρ_s |s| u_n,s
- * of each wet open segment of the vertex. */
+/* ṁ_v by hand from the store's solved segment values (the last evaluation): ρ_s |s| u_n,s of
+ * each wet open segment of the vertex, halved unless the segment's other vertex is a corner (a
+ * corner takes none). */
 static double mdot_hand(const struct sph_solver *sv, size_t iv) {
   const struct sph_open *op = sv->open;
   const struct sph_parts *sg = &sv->sys.part[SPH_KIND_SEGMENT];
@@ -93,7 +94,11 @@ static double mdot_hand(const struct sph_solver *sv, size_t iv) {
     const struct sph_open_points *pt = &op->pts[op->seg_group[j]];
     if (pt->slot[op->seg_point[j]] == (size_t)-1) continue; /* dry: no flux */
     const double un = -sg->v[0][j];                         /* the face x+: n = (−1, 0) */
-    sum += 0.5 * sg->rho[j] * sg->measure[j] * un;
+    const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+    const size_t other = sg->vertex[0][j] == iv ? sg->vertex[1][j] : sg->vertex[0][j];
+    if (v->flags[iv] & SPH_FLAG_CORNER) continue;
+    const double share = v->flags[other] & SPH_FLAG_CORNER ? 1.0 : 0.5;
+    sum += share * sg->rho[j] * sg->measure[j] * un;
   }
   return sum;
 }
@@ -124,10 +129,15 @@ static void test_vertex_mass_hand(void **state) {
     assert_true(v->mass[i] == m0[i] + dt * op->mdot[i]); /* J(14), bitwise */
     sum += op->mdot[i];
     if (op->mdot[i] != 0.0) nflux++;
-    /* the floor corner (0.3, 0): half of its one open segment's flux, ρ_s Δr u/2 */
+    /* the floor corner (0.3, 0) takes no mass; the vertex above it all of the corner segment's
+     * flux and half of the next: about 1.5 ρ0 Δr u */
     if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i]) < 1e-12) {
       ncorner++;
-      const double expect = 0.5 * 1000.0 * 0.025 * 0.05;
+      assert_true(v->flags[i] & SPH_FLAG_CORNER);
+      assert_true(op->mdot[i] == 0.0 && v->mass[i] == m0[i]);
+    }
+    if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.025) < 1e-12) {
+      const double expect = 1.5 * 1000.0 * 0.025 * 0.05;
       assert_true(fabs(op->mdot[i] - expect) <= 0.01 * expect); /* ρ_s within 1 % of ρ0 */
     }
   }
@@ -172,15 +182,16 @@ static void test_conservation(void **state) {
   double in;
   struct sph_solver *sv = box_solver("impose: velocity, normal_velocity: 0.05");
   print_message("inflow at 0.05 m/s:\n");
-  const double e_in = conservation(sv, 0.05, &in);
-  /* about ρ0 H u t = 1000 × 0.15 × 0.05 × 0.05 = 0.375 kg/m entered */
-  assert_true(in > 0.3 && in < 0.7);
+  const double e_in = conservation(sv, 0.03, &in);
+  /* about ρ0 H u t = 1000 × 0.15 × 0.05 × 0.03 = 0.225 kg/m entered (more: the wet face is higher)
+   */
+  assert_true(in > 0.2 && in < 0.45);
   assert_true(e_in <= 1e-13);
   solver_destroy(sv);
   /* an outlet at the hydrostatic pressure of a lower level: the fluid leaves */
   sv = box_solver("impose: pressure, hydrostatic: {depth: 0.1}");
   print_message("pressure outflow (hydrostatic, depth 0.1 m against 0.15 m of water):\n");
-  const double e_out = conservation(sv, 0.05, &in);
+  const double e_out = conservation(sv, 0.03, &in);
   assert_true(in < 0.0);
   assert_true(e_out <= 1e-13);
   solver_destroy(sv);
@@ -226,7 +237,7 @@ static double uniform_flow(int io_terms, double t_end) {
 static void test_io_terms(void **state) {
   (void)state;
   sabre_fp_traps_on();
-  const double t_end = 0.05;
+  const double t_end = 0.03;
   const double with = uniform_flow(1, t_end), without = uniform_flow(0, t_end);
   print_message(
       "uniform flow 0.05 m/s through a box open at both ends, to t = %g s: max |rho/rho0 - 1| "
@@ -236,11 +247,114 @@ static void test_io_terms(void **state) {
   assert_true(with < 0.2 * without);
 }
 
+/* Creation and deletion by hand: a vertex given 1.25 particle masses above its wall mass creates
+ * one particle Δr/2 in front of it; a particle put behind the open face is deleted and its mass
+ * goes to the two vertices of the segment it crossed. */
+static void test_create_delete_hand(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_solver *sv = box_solver("impose: velocity, normal_velocity: 0.05");
+  struct sph_open *op = sv->open;
+  sph_solver_evaluate(sv);
+  struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX], *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double m_ref = 1000.0 * 0.025 * 0.025, m_start = total_mass(sv);
+  assert_true(fabs(op->particle_mass - m_ref) <= 1e-15 * m_ref);
+  size_t iv = (size_t)-1, iu = (size_t)-1;
+  for (size_t i = 0; i < v->n; i++) {
+    if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.075) < 1e-12) iv = i;
+    if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.1) < 1e-12) iu = i;
+  }
+  assert_true(iv != (size_t)-1 && iu != (size_t)-1);
+  const double base = op->mass_base[iv];
+  v->mass[iv] = base + 1.25 * m_ref;
+  const double m1 = total_mass(sv);
+  const size_t n0 = f->n;
+  const int64_t id = sv->sys.next_id;
+  assert_int_equal(sph_open_create_particles(op, sv), 1);
+  f = &sv->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f->n, n0 + 1);
+  const size_t a = n0;
+  assert_true(f->id[a] == id);
+  assert_true(fabs(f->x[0][a] - (0.3 - 0.0125)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
+  for (int c = 0; c < 3; c++) assert_true(f->v[c][a] == v->v[c][iv]);
+  assert_true(f->rho[a] == v->rho[iv] && f->mass[a] == op->particle_mass);
+  assert_true(fabs(v->mass[iv] - (base + 0.25 * m_ref)) <= 1e-15 * (base + m_ref));
+  assert_true(fabs(total_mass(sv) - m1) <= 1e-15 * m1);
+  assert_int_equal(op->created[0], 1);
+  /* a second call: 0.25 m_ref left, nothing */
+  assert_int_equal(sph_open_create_particles(op, sv), 0);
+  v->mass[iv] = base; /* back to the wall mass */
+  sph_solver_sync(sv);
+  /* deletion: the new particle moved behind the segment between (0.3, 0.075) and (0.3, 0.1) */
+  f->x[0][a] = 0.305;
+  f->x[1][a] = 0.0875;
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  assert_true(sv->nb.behind[a]);
+  const double mv = v->mass[iv], mu = v->mass[iu], m2 = total_mass(sv);
+  assert_int_equal(sph_open_delete_particles(op, sv), 1);
+  f = &sv->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f->n, n0);
+  for (size_t b = 0; b < f->n; b++) assert_true(f->id[b] != id);
+  assert_true(v->mass[iv] == mv + 0.5 * op->particle_mass &&
+              v->mass[iu] == mu + 0.5 * op->particle_mass);
+  assert_true(fabs(total_mass(sv) - m2) <= 1e-15 * m2);
+  assert_int_equal(op->deleted[0], 1);
+  print_message(
+      "created at (%.6g, %.6g) and deleted, total mass unchanged (1e-15); started at %.15g kg\n",
+      0.3 - 0.0125, 0.075, m_start);
+  solver_destroy(sv);
+}
+
+/* A flow at 0.5 m/s through a box open at both ends: particles are created at the inlet and
+ * deleted at the outlet, the count adds up, and mass is conserved to round-off. */
+static void test_through_flow(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  static const char text[] =
+      "geometry:\n"
+      "  dimension: 2\n"
+      "  dr: 0.025\n"
+      "  first_row: 1\n"
+      "  walls: [{type: box, lo: [0, 0], hi: [0.4, 0.3], open: [x-, x+]}]\n"
+      "  fluid: [{type: box, lo: [0, 0], hi: [0.4, 0.3]}]\n"
+      "fluid: {rho0: 1000, c0: 20}\n"
+      "initial: {velocity: [0.5, 0]}\n"
+      "time: {end: 1}\n"
+      "open_boundaries:\n"
+      "  - {name: in, wall: 0, faces: [x-], impose: velocity, normal_velocity: 0.5}\n"
+      "  - {name: out, wall: 0, faces: [x+], impose: pressure, pressure: 0}\n";
+  struct sph_solver *sv = solver_from_case(text);
+  /* Without the i/o terms of J(11): with them this run fails at t = 0.057 s (a particle reaching
+   * the outlet at ρ/ρ0 = 0.94, then pulled back at 3 m/s and compressed to 1.53; open problem,
+   * docs/sph-solver.md §10). What is tested here is the creation, the deletion and the mass. */
+  sv->open->no_io_terms = 1;
+  const size_t n0 = sv->sys.part[SPH_KIND_FLUID].n;
+  double in;
+  print_message("through flow at 0.5 m/s:\n");
+  const double err = conservation(sv, 0.075, &in);
+  const struct sph_open *op = sv->open;
+  const size_t n1 = sv->sys.part[SPH_KIND_FLUID].n;
+  double row[SPH_OPEN_CSV_COLUMNS];
+  sph_open_csv_row(op, 1, sv->time, row);
+  assert_string_equal(sph_open_csv_columns()[14], "deleted");
+  assert_true(row[13] == (double)op->created[1] && row[14] == (double)op->deleted[1]);
+  print_message(
+      "  fluid particles %zu -> %zu; created %ld at the inlet, %ld at the outlet; deleted "
+      "%ld at the inlet, %ld at the outlet\n",
+      n0, n1, op->created[0], op->created[1], op->deleted[0], op->deleted[1]);
+  assert_true(err <= 1e-13);
+  assert_true(op->created[0] > 0 && op->deleted[1] > 0);
+  assert_true((long)n1 ==
+              (long)n0 + op->created[0] + op->created[1] - op->deleted[0] - op->deleted[1]);
+  solver_destroy(sv);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_vertex_mass_hand),
-      cmocka_unit_test(test_conservation),
-      cmocka_unit_test(test_io_terms),
+      cmocka_unit_test(test_vertex_mass_hand), cmocka_unit_test(test_conservation),
+      cmocka_unit_test(test_io_terms),         cmocka_unit_test(test_create_delete_hand),
+      cmocka_unit_test(test_through_flow),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

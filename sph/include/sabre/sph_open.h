@@ -6,10 +6,10 @@
  * J(33–35). Equations as implemented: docs/sph-solver.md §10; case-file keys:
  * docs/sph-case-file.md, `open_boundaries`.
  *
- * Scope today: the boundary VALUES, and the mass through the boundary into the vertex masses
- * J(14–15) with the open-boundary terms of the continuity J(11–13). The open segments still act on
- * the fluid like walls carrying the solved ρ_s, p_s, v_s; particle creation and deletion (δm_v of
- * J 14) are the next step.
+ * Scope: the boundary VALUES; the mass through the boundary into the vertex masses J(14–15) with
+ * the open-boundary terms of the continuity J(11–13); particle creation at vertices that gained
+ * a particle's mass and deletion of particles that cross an open segment (δm_v of J 14). The open
+ * segments act on the fluid like walls carrying the solved ρ_s, p_s, v_s.
  *
  * Three layers:
  *   1. the case-file section, read into plain data (struct sph_open_config, a member of struct
@@ -258,6 +258,10 @@ struct sph_open {
   double mass_step[SPH_MAX_OPEN_GROUPS]; /**< mass that entered through each group during the
                                               last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
   int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
+  /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
+  double *mass_base;    /**< per vertex: its wall mass (at creation of this state) [kg] */
+  double particle_mass; /**< mass of a created particle, ρ0 Δr^d [kg] */
+  long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
   struct rmn_workspace *ws;
   double *work; /**< scratch of sph_open_boundary_values(): the Shepard sums of every point */
   /** First failure of the last evaluation: 0 none, else the riemann/ status; and its message
@@ -322,6 +326,21 @@ void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac);
 void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);
 
 /**
+ * Delete the fluid particles that left the domain through an open segment: those flagged behind
+ * the walls (sv->nb.behind, from the last γ evaluation) whose nearest element is an open segment;
+ * the mass of each goes to that segment's vertices (the rule of sph_open_share). Compacts
+ * nb.behind with the store. Returns how many were deleted (0 for op == NULL).
+ */
+size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv);
+/**
+ * Create a fluid particle at each open vertex whose mass exceeds its wall mass by at least
+ * particle_mass (at most one per vertex and call, vertices in index order): at r_v + Δr/2 n_v
+ * (n_v the vertex's open normal), with the vertex's solved velocity and density of the last
+ * evaluation, mass particle_mass, which the vertex loses. Returns how many were created.
+ */
+size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv);
+
+/**
  * The i/o terms of the time-summation continuity J(11) for fluid particle a, from the start
  * positions x0 (r_a^n), ρ_a^n and the open segments' and vertices' velocities in the store (those
  * of the last evaluation), with the virtual displacements δr = fac u of J(12–13) (fac = Δt/2 in
@@ -334,7 +353,7 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
                                  const double xa0[3], double rho_a0, double fac);
 
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
-#define SPH_OPEN_CSV_COLUMNS 13
+#define SPH_OPEN_CSV_COLUMNS 15
 const char *const *sph_open_csv_columns(void);
 /** One row of open_<name>.csv for group g from its last stats (time given by the caller). */
 void sph_open_csv_row(const struct sph_open *op, int g, double time,

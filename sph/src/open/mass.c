@@ -4,9 +4,12 @@
  * J(11–13). The mass fluxes ṁ_v themselves are computed with the boundary values (open.c).
  */
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "kernel.h"
+#include "open_internal.h"
 #include "sabre/common.h"
 #include "sabre/sph_open.h"
 #include "sabre/sph_solver.h"
@@ -71,4 +74,76 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
     vert_sum += op->mass0[i] * (sph_kernel_w_inline(k, r0) - sph_kernel_w_inline(k, r1));
   }
   return 0.5 * rho_a0 * seg_sum + vert_sum;
+}
+
+void sph_open_share(const struct sph_system *s, size_t j, double q, double *acc) {
+  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
+  int n = 0;
+  for (int d = 0; d < s->dim; d++) n += !(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER);
+  for (int d = 0; d < s->dim; d++) {
+    const size_t iv = sg->vertex[d][j];
+    if (n == 0 || !(v->flags[iv] & SPH_FLAG_CORNER)) acc[iv] += q / (n ? n : s->dim);
+  }
+}
+
+size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
+  if (!op) return 0;
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
+  uint8_t *remove = NULL;
+  size_t count = 0;
+  for (size_t a = 0; a < f->n; a++) {
+    if (!sv->nb.behind[a]) continue;
+    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    double dmin = INFINITY;
+    long jmin = -1;
+    for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
+      const size_t j = ls->index[q];
+      double ex[3][3], foot[3];
+      sph_segment_vertices(s, j, xa, ex);
+      const double d = sph_element_distance(s->dim, (const double(*)[3])ex, xa, foot);
+      if (d < dmin) dmin = d, jmin = (long)j;
+    }
+    if (jmin < 0 || op->seg_group[jmin] < 0) continue; /* behind a wall: check_state's failure */
+    if (!remove) remove = cmn_calloc(f->n + 1, 1);
+    remove[a] = 1;
+    sph_open_share(s, (size_t)jmin, f->mass[a], v->mass);
+    op->deleted[op->seg_group[jmin]]++;
+    count++;
+  }
+  if (!count) return 0;
+  size_t k = 0;
+  for (size_t a = 0; a < f->n; a++)
+    if (!remove[a]) sv->nb.behind[k++] = sv->nb.behind[a];
+  sph_parts_remove(f, remove);
+  free(remove);
+  return count;
+}
+
+size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
+  if (!op) return 0;
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
+  const double m = op->particle_mass;
+  size_t count = 0;
+  for (size_t i = 0; i < v->n; i++) {
+    const int g = op->vert_group[i];
+    if (g < 0 || !(v->mass[i] - op->mass_base[i] >= m)) continue;
+    const double *n = op->pts[g].normal[op->vert_point[i]];
+    const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
+    struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+    for (int c = 0; c < 3; c++) {
+      f->x[c][a] = v->x[c][i] + 0.5 * s->dr * n[c];
+      f->v[c][a] = v->v[c][i];
+    }
+    f->mass[a] = m;
+    f->rho[a] = v->rho[i];
+    f->p[a] = v->p[i];
+    f->gamma[a] = 1.0; /* the closed form at its position replaces it at the next evaluation */
+    v->mass[i] -= m;
+    op->created[g]++;
+    count++;
+  }
+  return count;
 }

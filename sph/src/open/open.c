@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "open_internal.h"
 #include "operators/pair.h"
 #include "sabre/common.h"
 #include "sabre/sph_open.h"
@@ -169,6 +170,9 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
   op->mdot = cmn_calloc(v->n + 1, sizeof *op->mdot);
   op->mass0 = cmn_calloc(v->n + 1, sizeof *op->mass0);
   for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
+  op->mass_base = cmn_calloc(v->n + 1, sizeof *op->mass_base);
+  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
+  op->particle_mass = sv->cfg.rho0 * pow(sv->sys.dr, dim);
   for (size_t i = 0, q = 0; i < v->n; i++)
     if (op->vert_group[i] >= 0) {
       for (int c = 0; c < 3; c++) op->wall_v[q][c] = v->v[c][i];
@@ -210,6 +214,7 @@ void sph_open_free(struct sph_open *op) {
   free(op->wall_v);
   free(op->mdot);
   free(op->mass0);
+  free(op->mass_base);
   free(op->work);
   rmn_workspace_free(op->ws);
   free(op);
@@ -414,10 +419,10 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       s_ui += w * dot3(pt->u_int[k], pt->normal[k]);
       flux += w * r->un;
       /* J(15): the segment's mass flux ρ_s |s| (u_s − v_s)·n_s (fixed boundary: v_s = 0), shared
-       * equally between its dim vertices (corners shared with a wall included) */
+       * equally between its vertices that are not corners (docs/sph-solver.md §10) */
       const double q = r->rho * w * r->un;
       mflux += q;
-      for (int d = 0; d < dim; d++) op->mdot[sg->vertex[d][i]] += q / dim;
+      sph_open_share(s, i, q, op->mdot);
     }
     stt->time = t;
     stt->imposed = m > 0.0 ? s_imp / m : NAN;
@@ -432,8 +437,9 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
 
 const char *const *sph_open_csv_columns(void) {
   static const char *const names[SPH_OPEN_CSV_COLUMNS] = {
-      "time",      "imposed", "p",       "un",        "p_interior", "un_interior", "volume_flux",
-      "mass_flux", "level",   "contact", "expansion", "shock",      "dry"};
+      "time",        "imposed",     "p",         "un",      "p_interior",
+      "un_interior", "volume_flux", "mass_flux", "level",   "contact",
+      "expansion",   "shock",       "dry",       "created", "deleted"};
   return names;
 }
 
@@ -452,6 +458,8 @@ void sph_open_csv_row(const struct sph_open *op, int g, double time,
                                           (double)s->nwave[RMN_WAVE_CONTACT],
                                           (double)s->nwave[RMN_WAVE_EXPANSION],
                                           (double)s->nwave[RMN_WAVE_SHOCK],
-                                          (double)s->ndry};
+                                          (double)s->ndry,
+                                          (double)op->created[g],
+                                          (double)op->deleted[g]};
   memcpy(row, r, sizeof r);
 }

@@ -797,7 +797,13 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
              sv->step + 1, sv->time, sqrt(dmax), 0.5 * skin(sv));
     return -1;
   }
+  /* Open boundaries (§10): particles that left through an open segment are deleted (their mass
+   * to its vertices) before the checks, and vertices whose mass passed the threshold create one
+   * after them; the store changed: sync. */
+  const size_t ndel = sv->open_off ? 0 : sph_open_delete_particles(sv->open, sv);
   int rc = check_state(sv, msg, msglen);
+  const size_t nnew = sv->open_off || rc ? 0 : sph_open_create_particles(sv->open, sv);
+  if (ndel || nnew) sph_solver_sync(sv);
   sv->time += dt;
   sv->step++;
   return rc;

@@ -6,10 +6,10 @@
  * J(33–35). Equations as implemented: docs/sph-solver.md §10; case-file keys:
  * docs/sph-case-file.md, `open_boundaries`.
  *
- * Scope today: the boundary VALUES. The open segments still close the domain like walls (the
- * momentum equation's wall terms see their solved ρ_s, p_s, v_s); mass does not cross them yet
- * (the vertex masses J(14–15), the i/o terms of the continuity J(11–13) and particle creation and
- * deletion are the next step).
+ * Scope: the boundary VALUES; the mass through the boundary into the vertex masses J(14–15) with
+ * the open-boundary terms of the continuity J(11–13); particle creation at vertices that gained
+ * a particle's mass and deletion of particles that cross an open segment (δm_v of J 14). The open
+ * segments act on the fluid like walls carrying the solved ρ_s, p_s, v_s.
  *
  * Three layers:
  *   1. the case-file section, read into plain data (struct sph_open_config, a member of struct
@@ -212,6 +212,8 @@ struct sph_open_stats {
   double p, un;         /**< mean solved pressure [Pa] and normal velocity into the fluid [m/s] */
   double p_int, un_int; /**< mean interior (Shepard) pressure and normal velocity */
   double volume_flux;   /**< Σ_s |s| u_n,s (> 0 into the fluid) [m^d/s; 2D per unit depth] */
+  double mass_flux;     /**< Σ_s ρ_s |s| u_n,s, J(15) summed over the group's vertices (> 0 into
+                             the fluid) [kg/s; 2D per unit depth] */
   double level;         /**< measured free-surface level (hydrostatic, measured), else NaN [m] */
   long nwave[3];        /**< segments per wave type (enum rmn_wave: contact, expansion, shock) */
   long ndry;            /**< segments without fluid within 2h (not solved; they keep wall values) */
@@ -249,6 +251,17 @@ struct sph_open {
   long *vert_point;    /**< per vertex: its point index within its group, or −1 */
   double (*wall_v)[3]; /**< per open vertex, in vertex order: the store's velocity at creation
                             (the wall's), which sph_open_restore_walls() puts back */
+  /* Mass through the boundary, J(14–15) (docs/sph-solver.md §10): per vertex of the store (0 for
+   * vertices that are not open). */
+  double *mdot;  /**< ṁ_v of the last evaluation, J(15) [kg/s; 2D per unit depth] */
+  double *mass0; /**< m_v^n: the vertex masses at the start of the current step [kg] */
+  double mass_step[SPH_MAX_OPEN_GROUPS]; /**< mass that entered through each group during the
+                                              last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
+  int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
+  /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
+  double *mass_base;    /**< per vertex: its wall mass (at creation of this state) [kg] */
+  double particle_mass; /**< mass of a created particle, ρ0 Δr^d [kg] */
+  long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
   struct rmn_workspace *ws;
   double *work; /**< scratch of sph_open_boundary_values(): the Shepard sums of every point */
   /** First failure of the last evaluation: 0 none, else the riemann/ status; and its message
@@ -300,8 +313,47 @@ void sph_open_restore_walls(struct sph_open *op, struct sph_solver *sv);
 int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, const double n[3],
                            unsigned flags);
 
+/**
+ * Vertex masses through the predictor–corrector, J(14) (docs/sph-solver.md §10); no-ops for
+ * op == NULL. sph_open_mass_begin(): keep m_v^n (at the start of a step, after the evaluation of
+ * state n). sph_open_mass_set(op, sv, fac): m_v = m_v^n + fac ṁ_v with ṁ_v of the last evaluation
+ * (fac = Δt/2 after the predictor's continuity: m*, ṁ^n; fac = 0 to put m^n back before the
+ * corrector's continuity). sph_open_mass_end(op, sv, dt): m_v^{n+1} = m_v^n + Δt ṁ_v* (the
+ * predictor's ṁ) and mass_step[g] = Δt × the group's mass flux.
+ */
+void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv);
+void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac);
+void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);
+
+/**
+ * Delete the fluid particles that left the domain through an open segment: those flagged behind
+ * the walls (sv->nb.behind, from the last γ evaluation) whose nearest element is an open segment;
+ * the mass of each goes to that segment's vertices (the rule of sph_open_share). Compacts
+ * nb.behind with the store. Returns how many were deleted (0 for op == NULL).
+ */
+size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv);
+/**
+ * Create a fluid particle at each open vertex whose mass exceeds its wall mass by at least
+ * particle_mass (at most one per vertex and call, vertices in index order): at r_v + Δr/2 n_v
+ * (n_v the vertex's open normal), with the vertex's solved velocity and density of the last
+ * evaluation, mass particle_mass, which the vertex loses. Returns how many were created.
+ */
+size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv);
+
+/**
+ * The i/o terms of the time-summation continuity J(11) for fluid particle a, from the start
+ * positions x0 (r_a^n), ρ_a^n and the open segments' and vertices' velocities in the store (those
+ * of the last evaluation), with the virtual displacements δr = fac u of J(12–13) (fac = Δt/2 in
+ * the predictor, Δt in the corrector):
+ *   ρ_a^n/2 Σ_{s∈S^io} [∇γ_as(r_as^n + δr_s) + ∇γ_as(r_as^n)]·δr_s
+ *   + Σ_{v∈V^io} m_v^n [w(r_av^n) − w(r_av^n + δr_v)],
+ * over the open segments and vertices in a's lists. Returns 0 when op is NULL.
+ */
+double sph_open_continuity_terms(const struct sph_open *op, const struct sph_solver *sv, size_t a,
+                                 const double xa0[3], double rho_a0, double fac);
+
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
-#define SPH_OPEN_CSV_COLUMNS 12
+#define SPH_OPEN_CSV_COLUMNS 15
 const char *const *sph_open_csv_columns(void);
 /** One row of open_<name>.csv for group g from its last stats (time given by the caller). */
 void sph_open_csv_row(const struct sph_open *op, int g, double time,

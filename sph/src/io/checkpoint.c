@@ -1,7 +1,8 @@
 /*
  * Checkpoints: the whole particle store through its field table (so a field added to the store is
  * saved without touching this file), the run's time, step, last Δt and output counters, and the
- * imposed-flux controller's history (M 62–63 depend on the last two measured velocities). Raw
+ * imposed-flux controller's history (M 62–63 depend on the last two measured velocities) and the
+ * open boundaries' counts of created and deleted particles. Raw
  * native-endian binary: a checkpoint restarts a run on the machine that wrote it, bit-identically
  * for the same thread count (the step depends only on this state).
  */
@@ -13,7 +14,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT5";
+static const char magic[16] = "SABRE-SPH-CKPT6";
 
 void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c) {
   rc->ndigest = 0;
@@ -81,6 +82,13 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   W(&fsteps, sizeof fsteps, 1);
   W(&sv->flux_v, sizeof(double), 1);
   W(&sv->flux_force, sizeof(double), 1);
+  /* open boundaries: particles created and deleted per group since the run began */
+  int64_t ocount[2][SPH_MAX_OPEN_GROUPS] = {{0}};
+  for (int g = 0; sv->open && g < sv->open->ngroups; g++) {
+    ocount[0][g] = sv->open->created[g];
+    ocount[1][g] = sv->open->deleted[g];
+  }
+  W(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);
   for (int k = 0; k < SPH_NKINDS; k++) {
@@ -229,6 +237,14 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
     R(&sv->flux_force, sizeof(double), 1);
     fc->method = (enum sph_flux_method)fmethod;
     fc->steps = (long)fsteps;
+  }
+  {
+    int64_t ocount[2][SPH_MAX_OPEN_GROUPS];
+    R(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
+    for (int g = 0; sv->open && g < sv->open->ngroups; g++) {
+      sv->open->created[g] = (long)ocount[0][g];
+      sv->open->deleted[g] = (long)ocount[1][g];
+    }
   }
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "open_internal.h"
 #include "operators/pair.h"
 #include "sabre/common.h"
 #include "sabre/sph_open.h"
@@ -166,6 +167,12 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
   size_t nvert_open = 0;
   for (size_t i = 0; i < v->n; i++) nvert_open += op->vert_group[i] >= 0;
   op->wall_v = cmn_calloc(nvert_open + 1, sizeof *op->wall_v);
+  op->mdot = cmn_calloc(v->n + 1, sizeof *op->mdot);
+  op->mass0 = cmn_calloc(v->n + 1, sizeof *op->mass0);
+  for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
+  op->mass_base = cmn_calloc(v->n + 1, sizeof *op->mass_base);
+  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
+  op->particle_mass = sv->cfg.rho0 * pow(sv->sys.dr, dim);
   for (size_t i = 0, q = 0; i < v->n; i++)
     if (op->vert_group[i] >= 0) {
       for (int c = 0; c < 3; c++) op->wall_v[q][c] = v->v[c][i];
@@ -205,6 +212,9 @@ void sph_open_free(struct sph_open *op) {
   free(op->vert_group);
   free(op->vert_point);
   free(op->wall_v);
+  free(op->mdot);
+  free(op->mass0);
+  free(op->mass_base);
   free(op->work);
   rmn_workspace_free(op->ws);
   free(op);
@@ -261,6 +271,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
   const double *gravity = sv->cfg.gravity, nu = sv->cfg.nu;
   op->fail = 0;
   op->fail_msg[0] = '\0';
+  memset(op->mdot, 0, v->n * sizeof *op->mdot);
 
   /* Measured free-surface levels (hydrostatic, depth: measured): the top fluid particle of the
    * group's Shepard sums below, plus Δr/2 (as the initial free surface). */
@@ -380,6 +391,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     /* Results into the store; dry or failed points keep their wall values. */
     struct sph_open_stats *stt = &op->stats[g];
     double m = 0.0, s_imp = 0.0, s_p = 0.0, s_un = 0.0, s_pi = 0.0, s_ui = 0.0, flux = 0.0;
+    double mflux = 0.0;
     stt->nwave[0] = stt->nwave[1] = stt->nwave[2] = 0;
     stt->ndry = 0;
     for (size_t k = 0; k < pt->npoints; k++) {
@@ -406,6 +418,11 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       s_pi += w * pt->p_int[k];
       s_ui += w * dot3(pt->u_int[k], pt->normal[k]);
       flux += w * r->un;
+      /* J(15): the segment's mass flux ρ_s |s| (u_s − v_s)·n_s (fixed boundary: v_s = 0), shared
+       * equally between its vertices that are not corners (docs/sph-solver.md §10) */
+      const double q = r->rho * w * r->un;
+      mflux += q;
+      sph_open_share(s, i, q, op->mdot);
     }
     stt->time = t;
     stt->imposed = m > 0.0 ? s_imp / m : NAN;
@@ -414,13 +431,15 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     stt->p_int = m > 0.0 ? s_pi / m : NAN;
     stt->un_int = m > 0.0 ? s_ui / m : NAN;
     stt->volume_flux = flux;
+    stt->mass_flux = mflux;
   }
 }
 
 const char *const *sph_open_csv_columns(void) {
   static const char *const names[SPH_OPEN_CSV_COLUMNS] = {
-      "time",        "imposed", "p",       "un",        "p_interior", "un_interior",
-      "volume_flux", "level",   "contact", "expansion", "shock",      "dry"};
+      "time",        "imposed",     "p",         "un",      "p_interior",
+      "un_interior", "volume_flux", "mass_flux", "level",   "contact",
+      "expansion",   "shock",       "dry",       "created", "deleted"};
   return names;
 }
 
@@ -434,10 +453,13 @@ void sph_open_csv_row(const struct sph_open *op, int g, double time,
                                           s->p_int,
                                           s->un_int,
                                           s->volume_flux,
+                                          s->mass_flux,
                                           s->level,
                                           (double)s->nwave[RMN_WAVE_CONTACT],
                                           (double)s->nwave[RMN_WAVE_EXPANSION],
                                           (double)s->nwave[RMN_WAVE_SHOCK],
-                                          (double)s->ndry};
+                                          (double)s->ndry,
+                                          (double)op->created[g],
+                                          (double)op->deleted[g]};
   memcpy(row, r, sizeof r);
 }

@@ -439,6 +439,8 @@ static void continuity_impl(struct sph_solver *sv, double fac) {
         dsum += pb->mass[b] * (sph_kernel_w_inline(k, r) - sph_kernel_w_inline(k, r0));
       }
     }
+    /* Open boundaries: the i/o terms of J(11) (docs/sph-solver.md §10), 0 without open groups. */
+    dsum += sph_open_continuity_terms(sv->open, sv, a, xa0, sv->rho_n[a], fac);
     f->rho[a] = (sv->gamma_n[a] * sv->rho_n[a] + dsum + scale * sv->diff[a]) / f->gamma[a];
   }
 }
@@ -749,6 +751,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   }
   memcpy(sv->rho_n, f->rho, n * sizeof(double));
   memcpy(sv->gamma_n, f->gamma, n * sizeof(double));
+  sph_open_mass_begin(sv->open, sv); /* open boundaries: m_v^n, J(14) (§10) */
   for (int c = 0; c < 3; c++) memcpy(sv->grad_gamma_n[c], f->grad_gamma[c], n * sizeof(double));
 
   /* Predictor to t + Δt/2. */
@@ -761,11 +764,13 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   refresh_gamma(sv);
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
   continuity(sv, 0.5 * dt);
-  sv->stage_time = sv->time + 0.5 * dt; /* the predictor's state (open-boundary data) */
+  sph_open_mass_set(sv->open, sv, 0.5 * dt); /* open vertices: m* = m^n + Δt/2 ṁ^n (§10) */
+  sv->stage_time = sv->time + 0.5 * dt;      /* the predictor's state (open-boundary data) */
   sph_solver_boundary_values(sv);
   if (vertex_failed(sv, msg, msglen)) return -1;
   sph_solver_forces(sv);
   add_flux_force(sv);
+  sph_open_mass_set(sv->open, sv, 0.0); /* m^n back for the corrector's continuity (§3) */
 
   /* Corrector to t + Δt. */
   for (int c = 0; c < 3; c++)
@@ -784,6 +789,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   sv->gamma_current = 1;
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)f->v, dt);
   continuity(sv, dt);
+  sph_open_mass_end(sv->open, sv, dt); /* m^{n+1} = m^n + Δt ṁ*, J(14) (§10) */
   if (sqrt(dmax) > 0.5 * skin(sv)) {
     snprintf(msg, msglen,
              "step %ld, t = %.9g s: a particle moved %g m in one step, more than half the "
@@ -791,7 +797,13 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
              sv->step + 1, sv->time, sqrt(dmax), 0.5 * skin(sv));
     return -1;
   }
+  /* Open boundaries (§10): particles that left through an open segment are deleted (their mass
+   * to its vertices) before the checks, and vertices whose mass passed the threshold create one
+   * after them; the store changed: sync. */
+  const size_t ndel = sv->open_off ? 0 : sph_open_delete_particles(sv->open, sv);
   int rc = check_state(sv, msg, msglen);
+  const size_t nnew = sv->open_off || rc ? 0 : sph_open_create_particles(sv->open, sv);
+  if (ndel || nnew) sph_solver_sync(sv);
   sv->time += dt;
   sv->step++;
   return rc;

@@ -1,0 +1,149 @@
+/*
+ * Mass through the open boundaries (sabre/sph_open.h, docs/sph-solver.md §10): the vertex masses
+ * of J(14–15) through the predictor–corrector, and the i/o terms of the time-summation continuity
+ * J(11–13). The mass fluxes ṁ_v themselves are computed with the boundary values (open.c).
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "kernel.h"
+#include "open_internal.h"
+#include "sabre/common.h"
+#include "sabre/sph_open.h"
+#include "sabre/sph_solver.h"
+#include "sabre/sph_walls.h"
+
+void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
+  if (!op) return;
+  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
+}
+
+void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac) {
+  if (!op) return;
+  struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++)
+    if (op->vert_group[i] >= 0)
+      v->mass[i] = fac != 0.0 ? op->mass0[i] + fac * op->mdot[i] : op->mass0[i];
+}
+
+void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt) {
+  if (!op) return;
+  sph_open_mass_set(op, sv, dt);
+  for (int g = 0; g < op->ngroups; g++) op->mass_step[g] = dt * op->stats[g].mass_flux;
+}
+
+double sph_open_continuity_terms(const struct sph_open *op, const struct sph_solver *sv, size_t a,
+                                 const double xa0[3], double rho_a0, double fac) {
+  if (!op || sv->open_off || op->no_io_terms) return 0.0;
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_kernel *k = &sv->kernel;
+  const double support = sph_kernel_support(k);
+  double seg_sum = 0.0, vert_sum = 0.0;
+  /* ρ_a^n/2 Σ_s [∇γ_as(r_as^n + δr_s) + ∇γ_as(r_as^n)]·δr_s, δr_s = fac u_s (fixed boundary) */
+  const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
+  for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
+    const size_t j = ls->index[q];
+    if (op->seg_group[j] < 0) continue;
+    const double dr[3] = {fac * sg->v[0][j], fac * sg->v[1][j], fac * sg->v[2][j]};
+    if (dr[0] == 0.0 && dr[1] == 0.0 && dr[2] == 0.0) continue;
+    struct sph_wall_element e;
+    sph_segment_vertices(s, j, xa0, e.x);
+    for (int c = 0; c < 3; c++) e.normal[c] = sg->normal[c][j];
+    const double xa1[3] = {xa0[0] + dr[0], xa0[1] + dr[1], xa0[2] + dr[2]};
+    double t0, t1, g0[3], g1[3];
+    sph_gamma_element(k, xa0, &e, &t0, g0);
+    sph_gamma_element(k, xa1, &e, &t1, g1);
+    for (int c = 0; c < 3; c++) seg_sum += (g0[c] + g1[c]) * dr[c];
+  }
+  /* Σ_v m_v^n [w(r_av^n) − w(r_av^n + δr_v)], δr_v = fac u_v */
+  const struct sph_nlist *lv = &sv->nb.list[SPH_KIND_VERTEX];
+  for (size_t q = lv->offset[a]; q < lv->offset[a + 1]; q++) {
+    const size_t i = lv->index[q];
+    if (op->vert_group[i] < 0) continue;
+    const double xv[3] = {v->x[0][i], v->x[1][i], v->x[2][i]};
+    double d[3];
+    sph_domain_delta(&s->domain, xv, xa0, d); /* r_av^n = r_a^n − r_v */
+    const double r0 = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int c = 0; c < 3; c++) d[c] += fac * v->v[c][i];
+    const double r1 = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (r0 >= support && r1 >= support) continue;
+    vert_sum += op->mass0[i] * (sph_kernel_w_inline(k, r0) - sph_kernel_w_inline(k, r1));
+  }
+  return 0.5 * rho_a0 * seg_sum + vert_sum;
+}
+
+void sph_open_share(const struct sph_system *s, size_t j, double q, double *acc) {
+  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
+  int n = 0;
+  for (int d = 0; d < s->dim; d++) n += !(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER);
+  for (int d = 0; d < s->dim; d++) {
+    const size_t iv = sg->vertex[d][j];
+    if (n == 0 || !(v->flags[iv] & SPH_FLAG_CORNER)) acc[iv] += q / (n ? n : s->dim);
+  }
+}
+
+size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
+  if (!op) return 0;
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
+  uint8_t *remove = NULL;
+  size_t count = 0;
+  for (size_t a = 0; a < f->n; a++) {
+    if (!sv->nb.behind[a]) continue;
+    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    double dmin = INFINITY;
+    long jmin = -1;
+    for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
+      const size_t j = ls->index[q];
+      double ex[3][3], foot[3];
+      sph_segment_vertices(s, j, xa, ex);
+      const double d = sph_element_distance(s->dim, (const double(*)[3])ex, xa, foot);
+      if (d < dmin) dmin = d, jmin = (long)j;
+    }
+    if (jmin < 0 || op->seg_group[jmin] < 0) continue; /* behind a wall: check_state's failure */
+    if (!remove) remove = cmn_calloc(f->n + 1, 1);
+    remove[a] = 1;
+    sph_open_share(s, (size_t)jmin, f->mass[a], v->mass);
+    op->deleted[op->seg_group[jmin]]++;
+    count++;
+  }
+  if (!count) return 0;
+  size_t k = 0;
+  for (size_t a = 0; a < f->n; a++)
+    if (!remove[a]) sv->nb.behind[k++] = sv->nb.behind[a];
+  sph_parts_remove(f, remove);
+  free(remove);
+  return count;
+}
+
+size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
+  if (!op) return 0;
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
+  const double m = op->particle_mass;
+  size_t count = 0;
+  for (size_t i = 0; i < v->n; i++) {
+    const int g = op->vert_group[i];
+    if (g < 0 || !(v->mass[i] - op->mass_base[i] >= m)) continue;
+    const double *n = op->pts[g].normal[op->vert_point[i]];
+    const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
+    struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+    for (int c = 0; c < 3; c++) {
+      f->x[c][a] = v->x[c][i] + 0.5 * s->dr * n[c];
+      f->v[c][a] = v->v[c][i];
+    }
+    f->mass[a] = m;
+    f->rho[a] = v->rho[i];
+    f->p[a] = v->p[i];
+    f->gamma[a] = 1.0; /* the closed form at its position replaces it at the next evaluation */
+    v->mass[i] -= m;
+    op->created[g]++;
+    count++;
+  }
+  return count;
+}

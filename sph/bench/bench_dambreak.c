@@ -30,13 +30,11 @@
 #include <string.h>
 #include <sys/resource.h>
 
+#include "bench_common.h"
 #include "operators/pair.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "sabre/sph_solver.h"
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #define MAXLIST 8
 
@@ -56,32 +54,10 @@ static const char case_fmt[] =
     "numerics: {diffusion: ferrari}\n"
     "time: {end: 1.5}\n";
 
-static void set_threads(int n) {
-#ifdef _OPENMP
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
-
 static struct sph_solver *setup(double dr) {
-  char yaml[2048], err[1024];
+  char yaml[2048];
   snprintf(yaml, sizeof yaml, case_fmt, dr);
-  struct cmn_case *c = cmn_case_parse(yaml, SABRE_BENCH_DIR "/casedambreak.yaml", err, sizeof err);
-  if (!c) cmn_error("%s", err);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  struct sph_config cfg;
-  sph_config_read(&cfg, c, g.dim);
-  cmn_case_check_unused(c);
-  struct sph_system s;
-  sph_system_from_geometry(&s, &g);
-  struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  sph_solver_init(sv, &cfg, &s, NULL, NULL);
-  sph_system_free(&s);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
-  return sv;
+  return bench_solver(yaml, SABRE_BENCH_DIR "/casedambreak.yaml");
 }
 
 /* Mean neighbours of a fluid particle within 2h: fluid and vertex particles (closer than 2h) and
@@ -111,7 +87,7 @@ static double peak_rss_bytes(void) {
 }
 
 static void run(double dr, long steps, int threads) {
-  set_threads(threads);
+  bench_set_threads(threads);
   struct sph_solver *sv = setup(dr);
   const struct sph_system *s = &sv->sys;
   const size_t nf = s->part[SPH_KIND_FLUID].n, nv = s->part[SPH_KIND_VERTEX].n,

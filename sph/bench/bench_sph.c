@@ -15,12 +15,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "bench_common.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "sabre/sph_solver.h"
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 struct bench_case {
   const char *name;
@@ -59,14 +57,6 @@ static const char case_3d[] =
     "initial: {pressure: hydrostatic}\n"
     "time: {end: 10}\n";
 
-static void set_threads(int n) {
-#ifdef _OPENMP
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
-
 /* Ordered fluid–fluid pairs closer than 2h, from the step's neighbour list (radius 2h + skin). */
 static double count_pairs(const struct sph_solver *sv) {
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
@@ -86,26 +76,11 @@ static double count_pairs(const struct sph_solver *sv) {
 }
 
 static struct sph_solver *setup(const struct bench_case *bc) {
-  char err[1024];
-  struct cmn_case *c = cmn_case_parse(bc->yaml, bc->name, err, sizeof err);
-  if (!c) cmn_error("%s", err);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  struct sph_config cfg;
-  sph_config_read(&cfg, c, g.dim);
-  cmn_case_check_unused(c);
-  struct sph_system s;
-  sph_system_from_geometry(&s, &g);
-  struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  sph_solver_init(sv, &cfg, &s, NULL, NULL);
-  sph_system_free(&s);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
-  return sv;
+  return bench_solver(bc->yaml, bc->name);
 }
 
 static void run(const struct bench_case *bc, int threads) {
-  set_threads(threads);
+  bench_set_threads(threads);
   struct sph_solver *sv = setup(bc);
   const size_t nfluid = sv->sys.part[SPH_KIND_FLUID].n;
   double wall = 0.0, pairs = 0.0;

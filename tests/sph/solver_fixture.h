@@ -6,11 +6,13 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "geometry/geometry.h"
 #include "sabre/common.h"
 #include "sabre/sph.h"
+#include "sabre/sph_open.h"
 #include "sabre/sph_solver.h"
 #include "testutil.h"
 
@@ -25,6 +27,41 @@ static inline void fixture_system_from_yaml(struct sph_system *s, const char *te
   sph_system_from_geometry(s, &g);
   sph_geometry_free(&g);
   cmn_case_free(c);
+}
+
+/* A solver from a whole case text with its force and open-boundary groups resolved against the
+ * mesh, as `sabre-sph run` sets it up (fatal mode: the case is good). Free with
+ * fixture_solver_destroy(). */
+static inline struct sph_solver *fixture_solver_from_case(const char *text) {
+  char err[512];
+  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
+  if (!c) fail_msg("%s", err);
+  struct sph_geometry g;
+  sph_geometry_read(&g, c);
+  struct sph_config *cfg = calloc(1, sizeof *cfg);
+  sph_config_read(cfg, c, g.dim);
+  sph_open_check_mesh(&cfg->open, c, &g.walls);
+  cmn_case_check_unused(c);
+  struct sph_system s;
+  sph_system_from_geometry(&s, &g);
+  const struct sph_mesh *m = &g.walls;
+  int *wall = calloc(m->nelem + 1, sizeof *wall);
+  long *edge = calloc(m->nelem + 1, sizeof *edge);
+  for (size_t e = 0; e < m->nelem; e++) wall[e] = m->source[e], edge[e] = m->source_index[e];
+  struct sph_solver *sv = calloc(1, sizeof *sv);
+  sph_solver_init(sv, cfg, &s, wall, edge);
+  free(wall);
+  free(edge);
+  free(cfg);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  cmn_case_free(c);
+  return sv;
+}
+
+static inline void fixture_solver_destroy(struct sph_solver *sv) {
+  sph_solver_free(sv);
+  free(sv);
 }
 
 /* Parse base + extra as case.yaml and read the solver's sections in non-fatal mode; with extra

@@ -575,39 +575,6 @@ static void test_values_3d(void **state) {
 /* ------------------------------------------------------------------------------------------- */
 /* Solver-level fixtures                                                                        */
 
-/* A solver from a whole case text (fatal mode: the case is good). */
-static struct sph_solver *solver_from_case(const char *text) {
-  char err[512];
-  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
-  if (!c) fail_msg("%s", err);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  struct sph_config *cfg = calloc(1, sizeof *cfg);
-  sph_config_read(cfg, c, g.dim);
-  sph_open_check_mesh(&cfg->open, c, &g.walls);
-  cmn_case_check_unused(c);
-  struct sph_system s;
-  sph_system_from_geometry(&s, &g);
-  const struct sph_mesh *m = &g.walls;
-  int *wall = calloc(m->nelem + 1, sizeof *wall);
-  long *edge = calloc(m->nelem + 1, sizeof *edge);
-  for (size_t e = 0; e < m->nelem; e++) wall[e] = m->source[e], edge[e] = m->source_index[e];
-  struct sph_solver *sv = calloc(1, sizeof *sv);
-  sph_solver_init(sv, cfg, &s, wall, edge);
-  free(wall);
-  free(edge);
-  free(cfg);
-  sph_system_free(&s);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
-  return sv;
-}
-
-static void solver_destroy(struct sph_solver *sv) {
-  sph_solver_free(sv);
-  free(sv);
-}
-
 /* A 2D box 0.5 × 0.4 m with its right face open, water to 0.2 m (first row Δr from the walls). */
 static const char box_case[] =
     "geometry:\n"
@@ -625,7 +592,7 @@ static struct sph_solver *box_solver(const char *open) {
   char text[4096];
   snprintf(text, sizeof text, "%sopen_boundaries:\n  - {name: right, wall: 0, %s}\n", box_case,
            open);
-  return solver_from_case(text);
+  return fixture_solver_from_case(text);
 }
 
 /* Perturb the fluid (seeded): velocities and densities, so that the interior states differ. */
@@ -743,7 +710,7 @@ static void test_solve_direct(void **state) {
     char msg[1024];
     assert_int_equal(sph_solver_step(sv, INFINITY, msg, sizeof msg), 0);
     assert_true(sv->open->stats[0].time == 0.3 + 0.5 * sv->dt);
-    solver_destroy(sv);
+    fixture_solver_destroy(sv);
   }
 }
 
@@ -753,7 +720,7 @@ static void test_solve_direct(void **state) {
 static void test_solve_3d(void **state) {
   (void)state;
   sabre_fp_traps_on();
-  struct sph_solver *sv = solver_from_case(
+  struct sph_solver *sv = fixture_solver_from_case(
       "geometry:\n"
       "  dimension: 3\n"
       "  dr: 0.1\n"
@@ -801,7 +768,7 @@ static void test_solve_3d(void **state) {
   print_message("3D: %zu and %zu wet points\n", wet[0], wet[1]);
   assert_true(wet[0] >= 20 && wet[1] >= 20);
   rmn_workspace_free(ws);
-  solver_destroy(sv);
+  fixture_solver_destroy(sv);
 }
 
 /* The exact shock branch and the acoustic relation p2 − p_int = ρ c (u2 − u_int) agree to second
@@ -859,7 +826,7 @@ static void test_linearised_exact(void **state) {
   size_t ns, nv;
   check_points(sv, &ns, &nv);
   assert_true(sv->open->stats[0].nwave[RMN_WAVE_SHOCK] > 0);
-  solver_destroy(sv);
+  fixture_solver_destroy(sv);
 }
 
 /* The vertex rule: every open vertex, corners included, is solved as a point of the open boundary
@@ -902,7 +869,7 @@ static void test_vertex_rule(void **state) {
       assert_int_equal(sv->open->vert_group[iv], -1);
       assert_true(v->v[0][iv] == 0.0 && v->v[1][iv] == 0.0);
     }
-  solver_destroy(sv);
+  fixture_solver_destroy(sv);
 }
 
 /* A failed solve stops the step with a message naming the group, the segment (element,
@@ -924,7 +891,7 @@ static void test_failed_solve(void **state) {
                         "imposed pressure -1000000 Pa"};
   for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
     if (!strstr(msg, want[i])) fail_msg("'%s' lacks '%s'", msg, want[i]);
-  solver_destroy(sv);
+  fixture_solver_destroy(sv);
   /* an imposed speed that the boundary problem cannot take (supersonic) */
   sv = box_solver("impose: velocity, normal_velocity: '-12*t'");
   sv->time = 0.5;
@@ -933,7 +900,7 @@ static void test_failed_solve(void **state) {
   assert_non_null(strstr(msg, "step 1, t = 0.5 s"));
   assert_non_null(strstr(msg, "RMN_ESUPERSONIC"));
   assert_non_null(strstr(msg, "imposed normal velocity -6 m/s"));
-  solver_destroy(sv);
+  fixture_solver_destroy(sv);
 }
 
 /* Still water with one open face at the hydrostatic pressure behaves like the wall it still is.
@@ -964,7 +931,7 @@ static void test_still_water(void **state) {
            "open_boundaries: [{name: right, wall: 0, impose: pressure,\n"
            "                   hydrostatic: {depth: 0.2125}}]\n");
   snprintf(text[1], sizeof text[1], still, "", "");
-  struct sph_solver *sv[2] = {solver_from_case(text[0]), solver_from_case(text[1])};
+  struct sph_solver *sv[2] = {fixture_solver_from_case(text[0]), fixture_solver_from_case(text[1])};
   const double rho_g_h = 1000.0 * 9.81 * 0.2125, sqrt_gh = sqrt(9.81 * 0.2125);
   /* t = 0: imposed = interior on the wet points */
   sph_solver_evaluate(sv[0]);
@@ -1006,8 +973,8 @@ static void test_still_water(void **state) {
   assert_true(du0 <= 1e-5 * sqrt_gh);
   assert_true(umax[0] <= 1.05 * umax[1]);
   assert_true(dx <= 0.2 * 0.025);
-  solver_destroy(sv[0]);
-  solver_destroy(sv[1]);
+  fixture_solver_destroy(sv[0]);
+  fixture_solver_destroy(sv[1]);
 }
 
 /* `sabre-sph run` with a bad open_boundaries section: exit status 2, the key in the message, and

@@ -197,7 +197,7 @@ static void boundary_values_impl(struct sph_solver *sv) {
   for (size_t a = 0; a < f->n; a++) {
     s->part[SPH_KIND_FLUID].p[a] = rmn_eos_pressure(eos, f->rho[a]);
     sv->mu[SPH_KIND_FLUID][a] = nu * f->rho[a];
-    sv->impedance[a] = f->rho[a] * rmn_eos_sound_speed(eos, f->rho[a]);
+    if (sv->cfg.wall_impedance) sv->impedance[a] = f->rho[a] * rmn_eos_sound_speed(eos, f->rho[a]);
   }
   /* Shepard M(16–17) with the hydrostatic correction p_b + ρ_b g·(r_v − r_b) (full) or its part
    * tangential to the wall, M(83). */

@@ -109,6 +109,26 @@ static void print_number(const char *key, double v) {
     printf("\"%s\": null", key);
 }
 
+/* One output line: the JSON object of the given keys and values, then "in_water"; a point outside
+ * the water is still evaluated, with a warning naming its --at (the first nx values). */
+static void print_point(const char *const *keys, const double *vals, size_t n, size_t nx,
+                        int status, double eta) {
+  if (status == SPH_WAVE_EOUTSIDE) {
+    char at[160] = "";
+    size_t len = 0;
+    for (size_t j = 0; j < nx && len < sizeof at; j++)
+      len += (size_t)snprintf(at + len, sizeof at - len, "%s%g", j ? "," : "", vals[j]);
+    cmn_warning("--at %s: the point is %s (eta = %.6g m): values evaluated as written", at,
+                vals[nx - 2] < 0.0 ? "below the bed" : "above the free surface", eta);
+  }
+  printf("{");
+  for (size_t j = 0; j < n; j++) {
+    if (j) printf(", ");
+    print_number(keys[j], vals[j]);
+  }
+  printf(", \"in_water\": %s}\n", status == SPH_WAVE_SUCCESS ? "true" : "false");
+}
+
 /* The library's "<field>: why" as "--<field>: why" (the fields are named as the options). */
 static _Noreturn void library_error(const char *cmd, const char *msg, int amplitude_given) {
   if (amplitude_given && strncmp(msg, "height:", 7) == 0)
@@ -161,23 +181,9 @@ static int cmd_stokes5(int argc, char **argv) {
     const double *x = at + 3 * i;
     struct sph_wave_point pt;
     const int status = sph_stokes5_eval(&w, x[0], x[1], x[2], &pt);
-    if (status == SPH_WAVE_EOUTSIDE)
-      cmn_warning("--at %g,%g,%g: the point is %s (eta = %.6g m): values evaluated as written",
-                  x[0], x[1], x[2], x[1] < 0.0 ? "below the bed" : "above the free surface",
-                  pt.eta);
-    printf("{");
-    print_number("x", x[0]);
-    printf(", ");
-    print_number("z", x[1]);
-    printf(", ");
-    print_number("t", x[2]);
-    const char *keys[] = {"eta", "u", "w", "p", "c", "k", "L", "T"};
-    const double vals[] = {pt.eta, pt.u, pt.w, pt.p, w.c, w.k, w.L, w.T};
-    for (size_t j = 0; j < sizeof keys / sizeof keys[0]; j++) {
-      printf(", ");
-      print_number(keys[j], vals[j]);
-    }
-    printf(", \"in_water\": %s}\n", status == SPH_WAVE_SUCCESS ? "true" : "false");
+    const char *keys[] = {"x", "z", "t", "eta", "u", "w", "p", "c", "k", "L", "T"};
+    const double vals[] = {x[0], x[1], x[2], pt.eta, pt.u, pt.w, pt.p, w.c, w.k, w.L, w.T};
+    print_point(keys, vals, sizeof keys / sizeof keys[0], 3, status, pt.eta);
   }
   free(at);
   return 0;
@@ -218,18 +224,9 @@ static int cmd_solitary(int argc, char **argv) {
     const double *x = at + 4 * i;
     struct sph_wave_point pt;
     const int status = sph_solitary_eval(&s, x[0], x[1], x[2], x[3], &pt);
-    if (status == SPH_WAVE_EOUTSIDE)
-      cmn_warning("--at %g,%g,%g,%g: the point is %s (eta = %.6g m): values evaluated as written",
-                  x[0], x[1], x[2], x[3], x[2] < 0.0 ? "below the bed" : "above the free surface",
-                  pt.eta);
-    printf("{");
     const char *keys[] = {"x", "y", "z", "t", "eta", "u", "v", "w", "p", "c", "k"};
     const double vals[] = {x[0], x[1], x[2], x[3], pt.eta, pt.u, pt.v, pt.w, pt.p, s.c, s.k};
-    for (size_t j = 0; j < sizeof keys / sizeof keys[0]; j++) {
-      if (j) printf(", ");
-      print_number(keys[j], vals[j]);
-    }
-    printf(", \"in_water\": %s}\n", status == SPH_WAVE_SUCCESS ? "true" : "false");
+    print_point(keys, vals, sizeof keys / sizeof keys[0], 4, status, pt.eta);
   }
   free(at);
   return 0;

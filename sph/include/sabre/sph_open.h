@@ -333,6 +333,14 @@ void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);
  */
 size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv);
 /**
+ * The open segment through which fluid particle a has left the fluid domain, or -1: a is behind
+ * the walls at the positions of the last γ evaluation (nb.behind) and the element nearest to it
+ * is an open segment. -1 too for op == NULL, with the open boundaries switched off, or when the
+ * nearest element is a wall. Used mid-step for the leaving particles (docs/sph-solver.md §10)
+ * and after the step for the deletion.
+ */
+long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *sv, size_t a);
+/**
  * Create a fluid particle at each open vertex whose mass exceeds its wall mass by at least
  * particle_mass (at most one per vertex and call, vertices in index order): at r_v + Δr/2 n_v
  * (n_v the vertex's open normal), with the vertex's solved velocity and density of the last

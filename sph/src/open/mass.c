@@ -76,39 +76,101 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
   return 0.5 * rho_a0 * seg_sum + vert_sum;
 }
 
-void sph_open_share(const struct sph_system *s, size_t j, double q, double *acc) {
+void sph_open_share(const struct sph_system *s, size_t j, const double x[3], double q,
+                    double *acc) {
+  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
+  const int dim = s->dim;
+  double ex[3][3], foot[3], w[3] = {1.0, 0.0, 0.0};
+  sph_segment_vertices(s, j, x, ex);
+  sph_element_distance(dim, (const double(*)[3])ex, x, foot);
+  if (dim == 2) {
+    double t = 0.0, l2 = 0.0;
+    for (int c = 0; c < 2; c++) {
+      t += (foot[c] - ex[0][c]) * (ex[1][c] - ex[0][c]);
+      l2 += (ex[1][c] - ex[0][c]) * (ex[1][c] - ex[0][c]);
+    }
+    t = fmin(fmax(t / l2, 0.0), 1.0);
+    w[0] = 1.0 - t;
+    w[1] = t;
+  } else if (dim == 3) { /* barycentric: areas of the sub-triangles opposite each vertex */
+    double total = 0.0;
+    for (int d = 0; d < 3; d++) {
+      const double *b = ex[(d + 1) % 3], *c2 = ex[(d + 2) % 3];
+      double u[3], z[3];
+      for (int c = 0; c < 3; c++) {
+        u[c] = b[c] - foot[c];
+        z[c] = c2[c] - foot[c];
+      }
+      const double cr[3] = {u[1] * z[2] - u[2] * z[1], u[2] * z[0] - u[0] * z[2],
+                            u[0] * z[1] - u[1] * z[0]};
+      w[d] = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+      total += w[d];
+    }
+    for (int d = 0; d < 3; d++) w[d] = total > 0.0 ? w[d] / total : 1.0 / 3.0;
+  }
+  /* corners take nothing: their weight goes to the others in proportion (all when every vertex
+   * is a corner, or when the others have no weight) */
+  double free_w = 0.0;
+  int nfree = 0;
+  for (int d = 0; d < dim; d++)
+    if (!(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER)) free_w += w[d], nfree++;
+  for (int d = 0; d < dim; d++) {
+    const size_t iv = sg->vertex[d][j];
+    const int corner = (v->flags[iv] & SPH_FLAG_CORNER) != 0;
+    double share;
+    if (nfree == 0)
+      share = w[d];
+    else if (free_w > 0.0)
+      share = corner ? 0.0 : w[d] / free_w;
+    else
+      share = corner ? 0.0 : 1.0 / nfree;
+    acc[iv] += q * share;
+  }
+}
+
+long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *sv, size_t a) {
+  if (!op || sv->open_off || !sv->nb.behind[a]) return -1;
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
+  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  double dmin = INFINITY;
+  long jmin = -1;
+  for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
+    const size_t j = ls->index[q];
+    double ex[3][3], foot[3];
+    sph_segment_vertices(s, j, xa, ex);
+    const double d = sph_element_distance(s->dim, (const double(*)[3])ex, xa, foot);
+    if (d < dmin) dmin = d, jmin = (long)j;
+  }
+  return jmin >= 0 && op->seg_group[jmin] >= 0 ? jmin : -1; /* behind a wall: not an exit */
+}
+
+double sph_open_share_flux(const struct sph_system *s, size_t j, double q, double *acc) {
   const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
   int n = 0;
   for (int d = 0; d < s->dim; d++) n += !(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER);
+  const double share = q / s->dim;
   for (int d = 0; d < s->dim; d++) {
     const size_t iv = sg->vertex[d][j];
-    if (n == 0 || !(v->flags[iv] & SPH_FLAG_CORNER)) acc[iv] += q / (n ? n : s->dim);
+    if (n == 0 || !(v->flags[iv] & SPH_FLAG_CORNER)) acc[iv] += share;
   }
+  return n == 0 ? s->dim * share : n * share;
 }
 
 size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
   if (!op) return 0;
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
-  const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
   uint8_t *remove = NULL;
   size_t count = 0;
   for (size_t a = 0; a < f->n; a++) {
-    if (!sv->nb.behind[a]) continue;
-    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-    double dmin = INFINITY;
-    long jmin = -1;
-    for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
-      const size_t j = ls->index[q];
-      double ex[3][3], foot[3];
-      sph_segment_vertices(s, j, xa, ex);
-      const double d = sph_element_distance(s->dim, (const double(*)[3])ex, xa, foot);
-      if (d < dmin) dmin = d, jmin = (long)j;
-    }
-    if (jmin < 0 || op->seg_group[jmin] < 0) continue; /* behind a wall: check_state's failure */
+    const long jmin = sph_open_exit_segment(op, sv, a);
+    if (jmin < 0) continue; /* in the fluid, or behind a wall: check_state's failure */
     if (!remove) remove = cmn_calloc(f->n + 1, 1);
     remove[a] = 1;
-    sph_open_share(s, (size_t)jmin, f->mass[a], v->mass);
+    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    sph_open_share(s, (size_t)jmin, xa, f->mass[a], v->mass);
     op->deleted[op->seg_group[jmin]]++;
     count++;
   }

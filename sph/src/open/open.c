@@ -417,12 +417,12 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       s_un += w * r->un;
       s_pi += w * pt->p_int[k];
       s_ui += w * dot3(pt->u_int[k], pt->normal[k]);
-      flux += w * r->un;
-      /* J(15): the segment's mass flux ρ_s |s| (u_s − v_s)·n_s (fixed boundary: v_s = 0), shared
-       * equally between its vertices that are not corners (docs/sph-solver.md §10) */
+      /* J(15): the segment's mass flux ρ_s |s| (u_s − v_s)·n_s (fixed boundary: v_s = 0), a d-th
+       * to each of its vertices that is not a corner (docs/sph-solver.md §10) */
       const double q = r->rho * w * r->un;
-      mflux += q;
-      sph_open_share(s, i, q, op->mdot);
+      const double qv = sph_open_share_flux(s, i, q, op->mdot);
+      mflux += qv;
+      flux += qv / r->rho;
     }
     stt->time = t;
     stt->imposed = m > 0.0 ? s_imp / m : NAN;

@@ -8,9 +8,17 @@
  *  volume flux (closed forms for plates and circles, the series of the rectangle). */
 double sph_open_duct_umax(const struct sph_open_poiseuille *d);
 
-/** Add q [kg or kg/s] of open segment j to its vertices: equal shares among those that are not
- *  corners (SPH_FLAG_CORNER: shared with a wall segment), among all of them when every one is a
- *  corner (docs/sph-solver.md §10). acc is indexed by vertex. */
-void sph_open_share(const struct sph_system *s, size_t j, double q, double *acc);
+/** Add the mass q [kg] of a particle that left at x through open segment j to its vertices: in
+ *  proportion to the barycentric coordinates of x's foot point on the segment (all of it to a
+ *  vertex when x crosses there), a corner's weight (SPH_FLAG_CORNER: shared with a wall segment)
+ *  going to the other vertices in proportion (docs/sph-solver.md §10). acc is indexed by vertex. */
+void sph_open_share(const struct sph_system *s, size_t j, const double x[3], double q, double *acc);
+
+/** Add the mass flux q [kg/s] through open segment j to the rates of its vertices, J(15): q/d to
+ *  each vertex that is not a corner; a corner's share is the flux through the part of the
+ *  segment next to the wall, whose fluid the wall's vertex layer stands for, and goes to no
+ *  vertex (all of q to all d vertices when every one is a corner). Returns the flux given to the
+ *  vertices, the segment's share of the boundary's mass flux (docs/sph-solver.md §10). */
+double sph_open_share_flux(const struct sph_system *s, size_t j, double q, double *acc);
 
 #endif

@@ -362,6 +362,11 @@ static void forces_impl(struct sph_solver *sv) {
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
+    if (sph_open_exit_segment(sv->open, sv, a) >= 0) { /* leaving: gravity only (§10) */
+      for (int c = 0; c < 3; c++) sv->acc[c][a] = sv->cfg.gravity[c];
+      sv->diff[a] = 0.0;
+      continue;
+    }
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
     /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
     sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
@@ -419,6 +424,10 @@ static void continuity_impl(struct sph_solver *sv, double fac) {
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
+    if (sph_open_exit_segment(sv->open, sv, a) >= 0) { /* leaving: density kept (§10) */
+      f->rho[a] = sv->rho_n[a];
+      continue;
+    }
     const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
     const double xa0[3] = {sv->x0[0][a], sv->x0[1][a], sv->x0[2][a]};
     double dsum = 0.0;

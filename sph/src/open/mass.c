@@ -59,16 +59,44 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
     sph_gamma_element(k, xa1, &e, &t1, g1);
     for (int c = 0; c < 3; c++) seg_sum += (g0[c] + g1[c]) * dr[c];
   }
-  /* Σ_v m_v^n [w(r_av^n) − w(r_av^n + δr_v)], δr_v = fac u_v */
+  /* Σ_v m_v^n [w(r_av^n) − w(r_av^n + δr_v)] over the open vertices, δr_v = fac u_v, and over
+   * the wall vertices with the part of the open boundary's displacement along the wall (the
+   * virtual motion slides the wall's vertex layer along itself with the open boundary, so that
+   * the end of that layer at the open boundary moves with it; docs/sph-solver.md §10): the
+   * displacement of the open vertex nearest to a. */
   const struct sph_nlist *lv = &sv->nb.list[SPH_KIND_VERTEX];
+  double u_open[3] = {0.0, 0.0, 0.0}, best = INFINITY;
   for (size_t q = lv->offset[a]; q < lv->offset[a + 1]; q++) {
     const size_t i = lv->index[q];
     if (op->vert_group[i] < 0) continue;
     const double xv[3] = {v->x[0][i], v->x[1][i], v->x[2][i]};
     double d[3];
+    sph_domain_delta(&s->domain, xv, xa0, d);
+    const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (d2 < best) {
+      best = d2;
+      for (int c = 0; c < 3; c++) u_open[c] = v->v[c][i];
+    }
+  }
+  if (best == INFINITY) return 0.5 * rho_a0 * seg_sum; /* no open vertex near a */
+  for (size_t q = lv->offset[a]; q < lv->offset[a + 1]; q++) {
+    const size_t i = lv->index[q];
+    double u[3];
+    if (op->vert_group[i] >= 0) {
+      for (int c = 0; c < 3; c++) u[c] = v->v[c][i];
+    } else {
+      const double nv[3] = {v->normal[0][i], v->normal[1][i], v->normal[2][i]};
+      const double nn = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
+      const double un =
+          nn > 0.0 ? (u_open[0] * nv[0] + u_open[1] * nv[1] + u_open[2] * nv[2]) / nn : 0.0;
+      for (int c = 0; c < 3; c++) u[c] = u_open[c] - un * nv[c];
+    }
+    if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0) continue;
+    const double xv[3] = {v->x[0][i], v->x[1][i], v->x[2][i]};
+    double d[3];
     sph_domain_delta(&s->domain, xv, xa0, d); /* r_av^n = r_a^n − r_v */
     const double r0 = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int c = 0; c < 3; c++) d[c] += fac * v->v[c][i];
+    for (int c = 0; c < 3; c++) d[c] += fac * u[c];
     const double r1 = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (r0 >= support && r1 >= support) continue;
     vert_sum += op->mass0[i] * (sph_kernel_w_inline(k, r0) - sph_kernel_w_inline(k, r1));
@@ -148,14 +176,15 @@ long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *s
 
 double sph_open_share_flux(const struct sph_system *s, size_t j, double q, double *acc) {
   const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
-  int n = 0;
-  for (int d = 0; d < s->dim; d++) n += !(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER);
   const double share = q / s->dim;
+  int n = 0;
   for (int d = 0; d < s->dim; d++) {
     const size_t iv = sg->vertex[d][j];
-    if (n == 0 || !(v->flags[iv] & SPH_FLAG_CORNER)) acc[iv] += share;
+    if (v->flags[iv] & SPH_FLAG_CORNER) continue;
+    acc[iv] += share;
+    n++;
   }
-  return n == 0 ? s->dim * share : n * share;
+  return n * share;
 }
 
 size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
@@ -191,7 +220,7 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
   size_t count = 0;
   for (size_t i = 0; i < v->n; i++) {
     const int g = op->vert_group[i];
-    if (g < 0 || !(v->mass[i] - op->mass_base[i] >= m)) continue;
+    if (g < 0 || (v->flags[i] & SPH_FLAG_CORNER) || !(v->mass[i] - op->mass_base[i] >= m)) continue;
     const double *n = op->pts[g].normal[op->vert_point[i]];
     const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
     struct sph_parts *f = &s->part[SPH_KIND_FLUID];

@@ -2,16 +2,17 @@
 #   make run    install dependencies, configure, build, run the showcase, write its output and plot
 #   make test   install dependencies, configure, build, run the whole ctest suite
 #   make bench  build and run the benchmarks (figures on stdout)
+#   make compare  SPH against fv1d on the 1D pipe problems of cases/compare (tables and figures)
 #   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)
 #   make format / make format-check   clang-format the sources / check they are formatted
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEPS := build-essential cmake pkg-config libgsl-dev libsundials-dev libyaml-dev libcmocka-dev \
-        python3-matplotlib
+        python3-matplotlib python3-yaml
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 SHOWCASE := $(BUILD)/showcase
 
-.PHONY: all deps configure build test run bench sanitize format format-check clean
+.PHONY: all deps configure build test run bench compare sanitize format format-check clean
 
 all: build
 
@@ -37,6 +38,11 @@ run: build
 
 bench: build
 	cmake --build $(BUILD) --target bench
+
+compare: build
+	@for p in water_hammer acoustic_outlet pipe_startup; do \
+	  /usr/bin/python3 cases/compare/compare.py cases/compare/$$p/problem.yaml --build $(BUILD) \
+	    --output $(BUILD)/cases/compare/$$p || exit 1; done
 
 sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSABRE_SANITIZE=ON

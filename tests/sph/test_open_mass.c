@@ -242,7 +242,9 @@ static void test_create_delete_hand(void **state) {
   assert_int_equal(f->n, n0 + 1);
   const size_t a = n0;
   assert_true(f->id[a] == id);
-  assert_true(fabs(f->x[0][a] - (0.3 - 0.0125)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
+  /* the centre of the entered layer: beyond the wall layer (φΔr) by Δr/2 */
+  const double off = (sv->vertex_phi + 0.5) * 0.025;
+  assert_true(fabs(f->x[0][a] - (0.3 - off)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
   for (int c = 0; c < 3; c++) assert_true(f->v[c][a] == v->v[c][iv]);
   assert_true(f->rho[a] == v->rho[iv] && f->mass[a] == op->particle_mass);
   assert_true(fabs(v->mass[iv] - (base + 0.25 * m_ref)) <= 1e-15 * (base + m_ref));
@@ -268,8 +270,9 @@ static void test_create_delete_hand(void **state) {
   assert_true(fabs(total_mass(sv) - m2) <= 1e-15 * m2);
   assert_int_equal(op->deleted[0], 1);
   print_message(
-      "created at (%.6g, %.6g) and deleted, total mass unchanged (1e-15); started at %.15g kg\n",
-      0.3 - 0.0125, 0.075, m_start);
+      "created at (%.6g, %.6g) (phi = %.4g) and deleted, total mass unchanged (1e-15); started at "
+      "%.15g kg\n",
+      0.3 - off, 0.075, sv->vertex_phi, m_start);
   fixture_solver_destroy(sv);
 }
 

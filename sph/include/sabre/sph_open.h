@@ -259,7 +259,7 @@ struct sph_open {
                                               last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
   int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
   /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
-  double *mass_base;    /**< per vertex: its wall mass (at creation of this state) [kg] */
+  double *mass_base;    /**< per vertex: its wall mass (sph_open_mass_base) [kg] */
   double particle_mass; /**< mass of a created particle, ρ0 Δr^d [kg] */
   long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
   struct rmn_workspace *ws;
@@ -321,6 +321,10 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
  * corrector's continuity). sph_open_mass_end(op, sv, dt): m_v^{n+1} = m_v^n + Δt ṁ_v* (the
  * predictor's ṁ) and mass_step[g] = Δt × the group's mass flux.
  */
+/** The wall masses of the open vertices (mass_base: the threshold of particle creation is
+ *  mass_base + particle_mass) from the store's vertex masses; sph_solver_init calls it once the
+ *  vertex masses are final (after the repacking). No-op for op == NULL. */
+void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac);
 void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);

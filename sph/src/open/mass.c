@@ -15,6 +15,12 @@
 #include "sabre/sph_solver.h"
 #include "sabre/sph_walls.h"
 
+void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv) {
+  if (!op) return;
+  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
+}
+
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
   if (!op) return;
   const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
@@ -217,6 +223,9 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
   const double m = op->particle_mass;
+  /* the centre of the layer of fluid that has entered in front of the vertex: beyond the wall
+   * layer (φΔr thick, the vertex's own mass) by half a spacing */
+  const double offset = (sv->vertex_phi + 0.5) * s->dr;
   size_t count = 0;
   for (size_t i = 0; i < v->n; i++) {
     const int g = op->vert_group[i];
@@ -225,7 +234,7 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
     const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
     struct sph_parts *f = &s->part[SPH_KIND_FLUID];
     for (int c = 0; c < 3; c++) {
-      f->x[c][a] = v->x[c][i] + 0.5 * s->dr * n[c];
+      f->x[c][a] = v->x[c][i] + offset * n[c];
       f->v[c][a] = v->v[c][i];
     }
     f->mass[a] = m;

@@ -215,6 +215,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   }
   profile_free(&prof);
   fluid_velocity(sv);
+  sph_open_mass_base(sv->open, sv); /* the wall masses, final now (docs/sph-solver.md §10) */
 
   sv->evaluated_step = -1;
 

@@ -236,6 +236,19 @@ def main(argv):
     for key in ("name", "fluid", "pipe", "initial", "left", "right", "time", "compare", "jump",
                 "sph", "fv1d"):
         need(prob, key, problem)
+    known = {"name", "fluid", "pipe", "initial", "left", "right", "time", "compare", "jump", "sph",
+             "fv1d", "reflection", "criteria"}
+    unknown = sorted(set(prob) - known)
+    if unknown:
+        fail(f"{problem}: unknown key(s) {', '.join(unknown)} (expected: {', '.join(sorted(known))})")
+    for key, allowed in (("criteria", {"l1", "falling", "reflection"}),
+                         ("sph", {"dr", "h_over_dr", "diffusion"}),
+                         ("fv1d", {"cells", "flux", "reconstruction"}),
+                         ("reflection", {"x_min", "times", "amplitude"})):
+        extra = sorted(set(prob.get(key) or {}) - allowed)
+        if extra:
+            fail(f"{problem}: {key}: unknown key(s) {', '.join(extra)} "
+                 f"(expected: {', '.join(sorted(allowed))})")
     name = prob["name"]
     build = opts["--build"] or os.environ.get("SABRE_BUILD") or \
         os.path.join(os.path.dirname(os.path.dirname(HERE)), "build")

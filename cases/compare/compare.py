@@ -35,7 +35,8 @@ Problem keys (all required unless a default is given):
   time: end, interval       [s]; SPH writes its particles every `interval`
   compare: [t...]           compare times, each a multiple of time.interval
   jump: p, u                the scales of the L1 differences [Pa, m/s]
-  sph: dr [list], h_over_dr (2), diffusion (ferrari)
+  sph: dr [list], h_over_dr (2), diffusion (ferrari), open_gradient (difference; sabre-sph's
+                            numerics.open_gradient)
   fv1d: cells, flux (godunov), reconstruction (mc)
   reflection (optional): x_min, times, amplitude
   criteria: l1 (fraction of the jump at the finest Δr, every compare time), falling (true: the
@@ -121,7 +122,8 @@ def write_sph(prob, problem_dir, run_dir, dr):
                   "nu": 0.0},
         "initial": {"pressure": str(prob["initial"]["p"]),
                     "velocity": [str(prob["initial"]["u"])]},
-        "numerics": {"diffusion": sph.get("diffusion", "ferrari")},
+        "numerics": {"diffusion": sph.get("diffusion", "ferrari"),
+                     "open_gradient": sph.get("open_gradient", "difference")},
         "time": {"end": float(prob["time"]["end"]),
                  "output_interval": float(prob["time"]["interval"])},
     }
@@ -242,7 +244,7 @@ def main(argv):
     if unknown:
         fail(f"{problem}: unknown key(s) {', '.join(unknown)} (expected: {', '.join(sorted(known))})")
     for key, allowed in (("criteria", {"l1", "falling", "reflection"}),
-                         ("sph", {"dr", "h_over_dr", "diffusion"}),
+                         ("sph", {"dr", "h_over_dr", "diffusion", "open_gradient"}),
                          ("fv1d", {"cells", "flux", "reconstruction"}),
                          ("reflection", {"x_min", "times", "amplitude"})):
         extra = sorted(set(prob.get(key) or {}) - allowed)

@@ -42,6 +42,8 @@ enum sph_kind { SPH_KIND_FLUID = 0, SPH_KIND_VERTEX = 1, SPH_KIND_SEGMENT = 2 };
 enum sph_flag {
   SPH_FLAG_OPEN = 1u << 0,   /**< vertex/segment on an open (inlet/outlet) boundary, else wall */
   SPH_FLAG_CORNER = 1u << 1, /**< vertex shared by a wall segment and an open segment */
+  SPH_FLAG_WET = 1u << 2,    /**< open segment or vertex whose boundary Riemann problem was solved
+                                  at the last evaluation (dry ones keep wall values) */
 };
 
 struct sph_parts {

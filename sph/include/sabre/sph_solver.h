@@ -191,10 +191,14 @@ struct sph_config {
   int vertex_hydro;       /**< enum sph_vertex_hydro */
   int wall_impedance;     /**< 1: the wall value of a fluid–wall pair is raised by ρ_a c_a |u_n|
                                while the particle approaches the wall (docs/sph-solver.md §4) */
-  int gamma_dynamic;      /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
-  int vertex_volume;      /**< enum sph_vertex_volume */
-  double vertex_layer;    /**< thickness of the wall layer of the vertex volumes [Δr] */
-  long repack_steps;      /**< pseudo-time steps of the initial repacking (0: none) */
+  int open_gradient_difference; /**< 1 (numerics.open_gradient: difference; default symmetric): the
+                                 * pressure gradient is exact for constants next to open
+                                 * boundaries in proportion to their share of the wall terms
+                                 * (sph_op_grad_pressure, docs/sph-solver.md §10) */
+  int gamma_dynamic;            /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
+  int vertex_volume;            /**< enum sph_vertex_volume */
+  double vertex_layer;          /**< thickness of the wall layer of the vertex volumes [Δr] */
+  long repack_steps;            /**< pseudo-time steps of the initial repacking (0: none) */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   double dt_max;

@@ -395,14 +395,16 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     stt->ndry = 0;
     for (size_t k = 0; k < pt->npoints; k++) {
       const int is_seg = k < pt->nseg;
+      struct sph_parts *pk = is_seg ? sg : v;
+      const size_t i = pt->index[k];
+      pk->flags[i] &= (uint8_t)~SPH_FLAG_WET;
       if (pt->slot[k] == (size_t)-1) {
         stt->ndry += is_seg;
         continue;
       }
       const struct rmn_boundary_result *r = &pt->out[pt->slot[k]];
       if (r->status != RMN_SUCCESS) continue;
-      struct sph_parts *pk = is_seg ? sg : v;
-      const size_t i = pt->index[k];
+      pk->flags[i] |= SPH_FLAG_WET;
       pk->rho[i] = r->rho;
       pk->p[i] = r->p;
       for (int c = 0; c < 3; c++) pk->v[c][i] = c < dim ? r->u[c] : 0.0;

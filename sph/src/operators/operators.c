@@ -24,12 +24,29 @@ static double approach(const struct sph_parts *pa, size_t a, const struct sph_pa
   return nn > 0.0 ? un / sqrt(nn) : 0.0;
 }
 
+/* χ_a: the share of the wet open segments in the wall terms of a's kernel, Σ_wet |term_as| /
+ * Σ_s |term_as| (0 without segments in the support). */
+static double open_share(const struct sph_op *op, size_t a) {
+  const struct sph_parts *ps = &op->sys->part[SPH_KIND_SEGMENT];
+  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
+  double open = 0.0, all = 0.0;
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    const double t = fabs(op->nb->term_as[q]);
+    all += t;
+    if (ps->flags[nl->index[q]] & SPH_FLAG_WET) open += t; /* dry ones act as walls */
+  }
+  return all > 0.0 ? open / all : 0.0;
+}
+
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int push_only, const double *impedance, double out[3]) {
+                 int push_only, const double *impedance, int open_difference, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
   double g[3] = {0.0, 0.0, 0.0};
+  /* Near an open boundary, χ_a f_a × the zeroth-order defect is taken out of every pair:
+   * (ρ_a/ρ_b)^k (f_b − χ_a f_a) + (1 − χ_a) f_a (ρ_b/ρ_a)^k (docs/sph-solver.md §10). */
+  const double chi = open_difference ? open_share(op, a) : 0.0, fc = chi * fa;
   for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
     const struct sph_parts *pb = &s->part[kind];
     const struct sph_nlist *nl = &op->nb->list[kind];
@@ -46,7 +63,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       }
       const double sum = ratio * fb + fa / ratio;
       if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
-      const double t = vb * sum * pr.dwdr_over_r;
+      const double t = vb * (sum - fc * (ratio + 1.0 / ratio)) * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
     }
   }
@@ -62,7 +79,8 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
     }
     const double t = ratio * fs + fa / ratio;
     if (push_only && t < 0.0) continue;
-    for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
+    const double tc = t - fc * (ratio + 1.0 / ratio);
+    for (int c = 0; c < 3; c++) g[c] -= tc * op->nb->grad_gamma_as[c][q];
   }
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = g[c] * inv_gamma;
@@ -70,12 +88,12 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 
 void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
                  double out[3]) {
-  grad(op, k, f, a, 0, NULL, out);
+  grad(op, k, f, a, 0, NULL, 0, out);
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, double out[3]) {
-  grad(op, k, p, a, 1, impedance, out);
+                          size_t a, const double *impedance, int open_difference, double out[3]) {
+  grad(op, k, p, a, 1, impedance, open_difference, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }

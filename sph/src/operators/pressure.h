@@ -27,8 +27,17 @@
  * boundary Riemann problem with the wall's normal velocity imposed (docs/sph-solver.md §4). A
  * receding particle sees the wall value unchanged. Open elements (SPH_FLAG_OPEN) keep the values of
  * their own Riemann solve.
+ *
+ * open_difference (numerics.open_gradient: difference): next to an open boundary the operator is
+ * made exact for a constant field in proportion to χ_a, the share of the wet open segments
+ * (SPH_FLAG_WET) in the wall terms of a's kernel (Σ_wet |term_as| / Σ_s |term_as|, 0 without
+ * segments): every pair's
+ * f_a-part loses χ_a f_a, so that χ_a = 1 (a particle that sees only open segments) gives the
+ * difference form (ρ_a/ρ_b)^k (f_b − f_a) and χ_a = 0 (walls only, or the bulk) M(37) unchanged,
+ * bit for bit. Without it the flowing rows' zeroth-order defect at an open boundary pushes the
+ * fluid in proportion to the pressure level (docs/sph-solver.md §10).
  */
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, double out[3]);
+                          size_t a, const double *impedance, int open_difference, double out[3]);
 
 #endif

@@ -281,6 +281,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                           &cfg->vertex_hydro));
   static const char *const impedances[] = {"none", "acoustic", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, 0, &cfg->wall_impedance));
+  static const char *const ograds[] = {"symmetric", "difference", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, 0, &cfg->open_gradient_difference));
   static const char *const gammas[] = {"analytic", "dynamic", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.gamma", gammas, 0, &cfg->gamma_dynamic));
   static const char *const vvols[] = {"geometric", "fitted", NULL};

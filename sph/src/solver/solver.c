@@ -370,7 +370,7 @@ static void forces_impl(struct sph_solver *sv) {
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
     /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
     sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
-                         gp);
+                         sv->cfg.open_gradient_difference, gp);
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

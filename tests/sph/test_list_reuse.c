@@ -163,8 +163,7 @@ static void test_option_error(void **state) {
       fixture_read_case(base, "numerics: {list_rebuild: every_step}\n", &cfg, msg, sizeof msg), 0);
   assert_int_equal(cfg.list_rebuild, SPH_LISTS_EVERY_STEP);
   assert_int_equal(
-      fixture_read_case(base, "numerics: {list_rebuild: sometimes}\n", &cfg, msg, sizeof msg),
-      -1);
+      fixture_read_case(base, "numerics: {list_rebuild: sometimes}\n", &cfg, msg, sizeof msg), -1);
   print_message("%s\n", msg);
   if (!strstr(msg, "case.yaml") || !strstr(msg, "numerics.list_rebuild") ||
       !strstr(msg, "when_needed"))

@@ -19,10 +19,11 @@
  * interactions/s (pairs closer than 2h, counted once per step), the time per step split into
  * neighbour lists, wall integrals (γ, ∇γ_as), vertex values, the pair loops of the forces and of
  * the continuity, and the rest (integration, checks), and the peak resident memory per particle
- * (fluid + vertex + segment). Set-up is not timed.
+ * (fluid + vertex + segment), and the builds of the neighbour lists per step. Set-up is not timed.
  *
- * usage: bench-dambreak [--dr LIST] [--steps LIST] [--threads LIST]   (comma-separated; the
- *        defaults: Δr 0.025,0.012,0.0085 m with 20,6,3 steps; threads 1,2)
+ * usage: bench-dambreak [--dr LIST] [--steps LIST] [--threads LIST] [--rebuild MODE]
+ *        (comma-separated; the defaults: Δr 0.025,0.012,0.0085 m with 20,6,3 steps; threads 1,2;
+ *        MODE numerics.list_rebuild, when_needed (default) or every_step)
  */
 #include <math.h>
 #include <stdio.h>
@@ -51,12 +52,14 @@ static const char case_fmt[] =
     "fluid: {rho0: 1000, c0: 34.31, xi: 7, nu: 1.0e-6}\n"
     "gravity: [0, 0, -9.81]\n"
     "initial: {pressure: hydrostatic}\n"
-    "numerics: {diffusion: ferrari}\n"
+    "numerics: {diffusion: ferrari, list_rebuild: %s}\n"
     "time: {end: 1.5}\n";
+
+static const char *rebuild = "when_needed";
 
 static struct sph_solver *setup(double dr) {
   char yaml[2048];
-  snprintf(yaml, sizeof yaml, case_fmt, dr);
+  snprintf(yaml, sizeof yaml, case_fmt, dr, rebuild);
   return bench_solver(yaml, SABRE_BENCH_DIR "/casedambreak.yaml");
 }
 
@@ -95,6 +98,7 @@ static void run(double dr, long steps, int threads) {
   double mean[3], pairs = 0.0, ff;
   neighbours(sv, mean, &ff);
   for (int p = 0; p < SPH_NPHASES; p++) sv->timing[p] = 0.0;
+  sv->list_builds = 0;
   long done = 0;
   for (; done < steps; done++) {
     char msg[1024];
@@ -112,11 +116,11 @@ static void run(double dr, long steps, int threads) {
   const double ms = done > 0 ? 1e3 / (double)done : NAN;
   printf(
       "| %6.4f | %d | %7zu | %6zu | %6zu | %3.0f / %3.0f / %3.0f | %9.3e | %9.3e | %8.1f | "
-      "%6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %5.0f |\n",
+      "%6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %6.1f | %5.0f | %4.2f |\n",
       dr, threads, nf, nv, ns, mean[0], mean[1], mean[2], (double)nf * (double)done / wall,
       pairs / wall, wall * ms, t[SPH_PHASE_LISTS] * ms, t[SPH_PHASE_WALLS] * ms,
       t[SPH_PHASE_VERTEX] * ms, t[SPH_PHASE_FORCES] * ms, t[SPH_PHASE_CONTINUITY] * ms, rest * ms,
-      peak_rss_bytes() / (double)(nf + nv + ns));
+      peak_rss_bytes() / (double)(nf + nv + ns), (double)sv->list_builds / (double)done);
   fflush(stdout);
   sph_solver_free(sv);
   free(sv);
@@ -161,21 +165,29 @@ int main(int argc, char **argv) {
       nsteps = parse_list(argv[i], argv[i + 1], steps);
     else if (strcmp(argv[i], "--threads") == 0)
       nthr = parse_list(argv[i], argv[i + 1], thr);
-    else {
-      fprintf(stderr, "bench-dambreak: unknown option %s (--dr, --steps, --threads)\n", argv[i]);
+    else if (strcmp(argv[i], "--rebuild") == 0) {
+      rebuild = argv[i + 1];
+      if (strcmp(rebuild, "when_needed") != 0 && strcmp(rebuild, "every_step") != 0) {
+        fprintf(stderr, "bench-dambreak: --rebuild: expected when_needed or every_step, got '%s'\n",
+                rebuild);
+        return 2;
+      }
+    } else {
+      fprintf(stderr, "bench-dambreak: unknown option %s (--dr, --steps, --threads, --rebuild)\n",
+              argv[i]);
       return 2;
     }
     i++;
   }
   printf(
-      "bench-dambreak: DualSPHysics' CaseDambreak geometry, %s steps from t = 0 "
+      "bench-dambreak: DualSPHysics' CaseDambreak geometry, %s steps from t = 0, lists rebuilt %s "
       "(ms per step; walls = gamma and grad gamma_as; rest = integration and checks)\n",
-      "fixed");
+      "fixed", rebuild);
   printf(
       "| dr m | thr | fluid | vertices | segments | neighbours F / V / S | fluid "
       "particle-steps/s | F-F interactions/s | ms/step | lists | walls | vertex | forces | "
-      "continuity | rest | peak B/particle |\n");
-  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "continuity | rest | peak B/particle | list builds/step |\n");
+  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < ndr; i++)
     for (int t = 0; t < nthr; t++)
       run(drs[i], (long)steps[i < nsteps ? i : nsteps - 1], (int)thr[t]);

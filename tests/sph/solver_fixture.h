@@ -110,6 +110,7 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->force_factor = 0.25;
   cfg->gamma_factor = 0.05;
   cfg->skin_over_h = 0.2;
+  cfg->list_rebuild = SPH_LISTS_WHEN_NEEDED;
   cfg->dt_max = INFINITY;
   cfg->density_band[0] = 0.5;
   cfg->density_band[1] = 1.5;

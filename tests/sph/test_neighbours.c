@@ -76,6 +76,7 @@ static void random_system(struct sph_system *s, int dim, unsigned periodic, uint
   }
 }
 
+/* The cell search's rows are the naive search's, entry for entry: both sorted by index. */
 static size_t compare_lists(const struct sph_nlist *cell, const struct sph_nlist *naive) {
   assert_int_equal(cell->n, naive->n);
   size_t total = 0;
@@ -85,7 +86,10 @@ static size_t compare_lists(const struct sph_nlist *cell, const struct sph_nlist
     size_t *row = malloc((len ? len : 1) * sizeof *row);
     memcpy(row, cell->index + cell->offset[i], len * sizeof *row);
     qsort(row, len, sizeof *row, cmp_size);
-    for (size_t k = 0; k < len; k++) assert_int_equal(row[k], naive->index[naive->offset[i] + k]);
+    for (size_t k = 0; k < len; k++) {
+      assert_int_equal(row[k], naive->index[naive->offset[i] + k]);
+      assert_int_equal(cell->index[cell->offset[i] + k], row[k]);
+    }
     free(row);
     total += len;
   }

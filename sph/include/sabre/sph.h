@@ -179,8 +179,10 @@ struct sph_nlist {
 /**
  * Build the list of particles of kind `other` within `radius` of each particle of kind `query`
  * (strictly closer; a particle is not its own neighbour). Segment–segment lists are not supported.
- * OpenMP-parallel gather over cells; the result does not depend on the thread count. `c` must have
- * been built from `s` as it is now; the radius may span up to 16 cells. Stops with an input error
+ * OpenMP-parallel gather over cells; the result does not depend on the thread count. Each row is
+ * sorted by neighbour index (as the naive search gives it), so that sums over a row run in the
+ * same order whatever the radius and the positions at the build. `c` must have been built from
+ * `s` as it is now; the radius may span up to 16 cells. Stops with an input error
  * (exit 2) if a periodic direction is shorter than 2 (radius + segment reach).
  */
 void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const struct sph_system *s,

@@ -127,6 +127,11 @@ void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
 enum sph_diffusion { SPH_DIFFUSION_NONE = 0, SPH_DIFFUSION_FERRARI = 1, SPH_DIFFUSION_BREZZI = 2 };
 /** c_ab of the Ferrari term: max(c_a, c_b), M(50); or 2K/r_ab with K = c0 Δr/η, M(48), M(52). */
 enum sph_diffusion_speed { SPH_DSPEED_MAX = 0, SPH_DSPEED_ETA = 1 };
+/** When the neighbour lists are rebuilt (numerics.list_rebuild): when some fluid particle has
+ *  moved more than skin/2 since the last build, checked before each of the three evaluations of a
+ *  step; or at the start of every step. The results are bitwise the same (docs/sph-solver.md §1).
+ */
+enum sph_list_rebuild { SPH_LISTS_WHEN_NEEDED = 0, SPH_LISTS_EVERY_STEP = 1 };
 /** Hydrostatic correction of the Shepard vertex values: none, full g·r_vb, tangential M(83). */
 enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TANGENTIAL = 2 };
 /** Vertex masses m_v = ρ_v V_v: V_v the geometric volume of the wall layer nearest to the vertex
@@ -201,6 +206,7 @@ struct sph_config {
   long repack_steps;            /**< pseudo-time steps of the initial repacking (0: none) */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
+  int list_rebuild;   /**< enum sph_list_rebuild */
   double dt_max;
   double density_band[2]; /**< stop when ρ/ρ0 leaves [lo, hi] */
   /* time and output */
@@ -294,6 +300,11 @@ struct sph_solver {
   double flux_force;   /**< driving acceleration F^n of the last step, M(58)/M(63) [m/s²] */
   long evaluated_step; /**< step whose start state sph_solver_evaluate() saw, or −1 */
   int gamma_current;   /**< nb's wall data are those of the current positions */
+  /* neighbour lists kept over several steps (cfg.list_rebuild) */
+  int lists_valid;   /**< nb's lists cover the fluid as it is (0 after sph_solver_sync) */
+  double *x_list[3]; /**< fluid positions at the last build of the lists [m] */
+  long list_builds;  /**< builds of the lists by the step and evaluation since set-up (the
+                          set-up's own builds not counted); zero it to count a run of steps */
   /* open boundaries (sabre/sph_open.h): NULL without open groups */
   struct sph_open *open;
   double stage_time; /**< time of the state whose boundary values are evaluated: sv->time, or
@@ -314,7 +325,8 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
 void sph_solver_free(struct sph_solver *sv);
 /** After the store changed between steps (particles created or removed, positions or masses set
  *  by hand): grow the solver's per-particle arrays to the store's sizes and drop the cached
- *  evaluation and wall data, so that the next step starts from the store as it is. */
+ *  evaluation, wall data and neighbour lists, so that the next step starts from the store as it
+ *  is (the lists are rebuilt there). */
 void sph_solver_sync(struct sph_solver *sv);
 
 /** Lists, γ, boundary values and forces of the current state (what a step starts with; also

@@ -123,6 +123,7 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
       if (g < 0) continue;
       double mag = 0.0;
       for (int c = 0; c < 3; c++) mag += sv->nb.grad_gamma_as[c][q] * sv->nb.grad_gamma_as[c][q];
+      if (mag == 0.0) continue; /* beyond the support: the pair is in the list only by its skin */
       mag = sqrt(mag);
       for (int c = 0; c < 3; c++) out[g][c] += fac * sv->wall_flux[c][q] * mag;
     }

@@ -49,7 +49,9 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
   const struct sph_kernel *k = &sv->kernel;
   const double support = sph_kernel_support(k);
   double seg_sum = 0.0, vert_sum = 0.0;
-  /* ρ_a^n/2 Σ_s [∇γ_as(r_as^n + δr_s) + ∇γ_as(r_as^n)]·δr_s, δr_s = fac u_s (fixed boundary) */
+  /* ρ_a^n/2 Σ_s [∇γ_as(r_as^n + δr_s) + ∇γ_as(r_as^n)]·δr_s, δr_s = fac u_s (fixed boundary).
+   * Only the elements within the support of either position count (∇γ_as is zero beyond it), so
+   * that the sum does not depend on how far the list reaches (lists kept over several steps). */
   const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
   for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {
     const size_t j = ls->index[q];
@@ -60,6 +62,10 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
     sph_segment_vertices(s, j, xa0, e.x);
     for (int c = 0; c < 3; c++) e.normal[c] = sg->normal[c][j];
     const double xa1[3] = {xa0[0] + dr[0], xa0[1] + dr[1], xa0[2] + dr[2]};
+    double foot[3];
+    if (sph_element_distance(s->dim, (const double(*)[3])e.x, xa0, foot) >= support &&
+        sph_element_distance(s->dim, (const double(*)[3])e.x, xa1, foot) >= support)
+      continue;
     double t0, t1, g0[3], g1[3];
     sph_gamma_element(k, xa0, &e, &t0, g0);
     sph_gamma_element(k, xa1, &e, &t1, g1);
@@ -69,7 +75,9 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
    * the wall vertices with the part of the open boundary's displacement along the wall (the
    * virtual motion slides the wall's vertex layer along itself with the open boundary, so that
    * the end of that layer at the open boundary moves with it; docs/sph-solver.md §10): the
-   * displacement of the open vertex nearest to a. */
+   * displacement of the open vertex nearest to a, among those within the support (r < 2h: the
+   * choice must not depend on how far the list reaches; ties go to the lowest index, the rows
+   * being sorted). */
   const struct sph_nlist *lv = &sv->nb.list[SPH_KIND_VERTEX];
   double u_open[3] = {0.0, 0.0, 0.0}, best = INFINITY;
   for (size_t q = lv->offset[a]; q < lv->offset[a + 1]; q++) {
@@ -79,7 +87,7 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
     double d[3];
     sph_domain_delta(&s->domain, xv, xa0, d);
     const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    if (d2 < best) {
+    if (d2 < best && d2 < support * support) {
       best = d2;
       for (int c = 0; c < 3; c++) u_open[c] = v->v[c][i];
     }
@@ -168,6 +176,8 @@ long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *s
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_nlist *ls = &sv->nb.list[SPH_KIND_SEGMENT];
   const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  /* behind[a] was decided by the elements within the support: the nearest is one of them, in
+   * every list that covers the support, and ties go to the lowest index (sorted rows). */
   double dmin = INFINITY;
   long jmin = -1;
   for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) {

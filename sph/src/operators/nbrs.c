@@ -1,8 +1,11 @@
 /*
  * Neighbourhoods of the fluid particles and the wall integrals per fluid–segment pair:
  * γ_a = 1 − Σ_s term_s, ∇γ_as and ∇γ_a, J(2)–J(4), through sabre/sph_walls.h (closed form).
- * The lists are built with radius 2h + skin so that one build serves a whole predictor–corrector
- * step (and the pairs at both ends of the time-summation continuity, M 84 / J 10–11).
+ * The lists are built with radius 2h + skin so that one build serves while no particle has moved
+ * more than skin/2 since (several steps; the solver decides when to rebuild), the pairs at both
+ * ends of the time-summation continuity included (M 84 / J 10–11). Rows are sorted by neighbour
+ * index (sph_nlist_build), and every loop over a row leaves out the pairs beyond the support, so
+ * the results do not depend on the radius or the time of the build.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -83,15 +86,20 @@ static void pair_wall(const struct sph_system *s, const struct sph_kernel *k, si
 }
 
 /* γ_a, ∇γ_a and the side test from the pair data of row a (sums in list order, so that reused
- * and recomputed pair data give the same bits). */
-static int sum_row(struct sph_nbrs *nb, struct sph_parts *f, size_t a, const double *dist) {
+ * and recomputed pair data give the same bits). A pair beyond the support has term and ∇γ_as
+ * exactly +0 (pair_wall): adding it leaves the sums' bits unchanged (a sum started at +0 is never
+ * −0, and x + 0 = x), so a row holding more pairs than needed (a list kept from an earlier build)
+ * gives the bits of a fresh one. The side test looks at the elements within the support only, for
+ * the same reason. */
+static int sum_row(struct sph_nbrs *nb, struct sph_parts *f, size_t a, const double *dist,
+                   double support) {
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
   double sum_term = 0.0, g[3] = {0.0, 0.0, 0.0}, dmin = INFINITY, side = 0.0;
   for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
     sum_term += nb->term_as[p];
     for (int c = 0; c < 3; c++) g[c] += nb->grad_gamma_as[c][p];
     /* Side test against the nearest element(s): outside when behind their summed normals. */
-    if (dist) {
+    if (dist && dist[p] < support) {
       if (dist[p] < dmin * (1.0 - 1e-9)) {
         dmin = dist[p];
         side = nb->dist_as[p];
@@ -124,7 +132,7 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
       pair_wall(s, k, a, nl->index[p], &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
       for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
     }
-    behind[a] = (unsigned char)sum_row(nb, f, a, dist);
+    behind[a] = (unsigned char)sum_row(nb, f, a, dist, sph_kernel_support(k));
   }
   free(dist);
   /* Every particle behind a wall is flagged; the count and the lowest index come from the flags
@@ -161,11 +169,11 @@ void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const str
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
+    size_t q = old.offset[a]; /* both rows sorted by segment index */
     for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
       const size_t j = nl->index[p];
-      size_t q = old.offset[a];
-      while (q < old.offset[a + 1] && old.index[q] != j) q++;
-      if (q < old.offset[a + 1]) {
+      while (q < old.offset[a + 1] && old.index[q] < j) q++;
+      if (q < old.offset[a + 1] && old.index[q] == j) {
         nb->term_as[p] = old_term[q];
         nb->dist_as[p] = old_off[q];
         for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = old_g[c][q];
@@ -175,7 +183,7 @@ void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const str
         for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
       }
     }
-    sum_row(nb, f, a, NULL);
+    sum_row(nb, f, a, NULL, 0.0);
   }
   /* nb->behind, nescaped and escaped are those of the evaluation at these positions. */
   sph_nlist_free(&old);

@@ -295,6 +295,9 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(opt_fraction(c, "numerics.force_factor", 0.25, &cfg->force_factor));
   TRY(opt_fraction(c, "numerics.gamma_factor", 0.05, &cfg->gamma_factor));
   TRY(opt_fraction(c, "numerics.skin", 0.2, &cfg->skin_over_h));
+  static const char *const rebuilds[] = {"when_needed", "every_step", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.list_rebuild", rebuilds, SPH_LISTS_WHEN_NEEDED,
+                          &cfg->list_rebuild));
   cfg->dt_max = INFINITY;
   if (cmn_case_has(c, "numerics.dt_max"))
     TRY(cmn_case_get_positive(c, "numerics.dt_max", &cfg->dt_max));

@@ -249,6 +249,7 @@ void sph_solver_free(struct sph_solver *sv) {
   for (int c = 0; c < 3; c++) {
     free(sv->acc[c]);
     free(sv->x0[c]);
+    free(sv->x_list[c]);
     free(sv->v0[c]);
     free(sv->grad_gamma_n[c]);
     free(sv->wall_flux[c]);

@@ -29,6 +29,7 @@ static void grow_arrays(struct sph_solver *sv) {
       for (int c = 0; c < 3; c++) {
         sv->acc[c] = grow(sv->acc[c], cap);
         sv->x0[c] = grow(sv->x0[c], cap);
+        sv->x_list[c] = grow(sv->x_list[c], cap);
         sv->v0[c] = grow(sv->v0[c], cap);
         sv->grad_gamma_n[c] = grow(sv->grad_gamma_n[c], cap);
       }
@@ -50,6 +51,7 @@ void sph_solver_sync(struct sph_solver *sv) {
   grow_arrays(sv);
   sv->evaluated_step = -1;
   sv->gamma_current = 0;
+  sv->lists_valid = 0;
 }
 
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
@@ -61,25 +63,91 @@ static double timed(struct sph_solver *sv, enum sph_phase ph, double t0) {
   return t1;
 }
 
-/* Lists, γ and ∇γ_as at the current positions. */
+/* Largest squared displacement of a fluid particle since the last build of the lists, at its
+ * current position and, with with_x0, at its position x0 of the start of the step (the
+ * time-summation continuity needs the pairs of both). Along periodic directions the minimum image
+ * is taken: a particle wrapped by a period has not moved, and its rows stay right. */
+static double moved2(const struct sph_solver *sv, int with_x0) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const struct sph_domain *dom = &sv->sys.domain;
+  double period[3], half[3];
+  for (int c = 0; c < 3; c++) {
+    const int per = c < dom->dim && dom->periodic[c];
+    period[c] = per ? dom->hi[c] - dom->lo[c] : 0.0;
+    half[c] = per ? 0.5 * period[c] : INFINITY;
+  }
+  double m = 0.0;
+  for (int set = 0; set <= with_x0; set++) {
+    const double *const *x = set ? (const double *const *)sv->x0 : (const double *const *)f->x;
+    for (size_t a = 0; a < f->n; a++) {
+      double d2 = 0.0;
+      for (int c = 0; c < 3; c++) {
+        double d = x[c][a] - sv->x_list[c][a];
+        d = d - period[c] * (d > half[c]) + period[c] * (d < -half[c]);
+        d2 += d * d;
+      }
+      m = fmax(m, d2);
+    }
+  }
+  return m;
+}
+
+/* Whether the lists must be rebuilt before evaluating at the current positions: always with
+ * numerics.list_rebuild = every_step (the caller builds once per step), else when they are stale
+ * or some particle has moved more than skin/2 since their build (then a pair now within 2h, or
+ * within 2h at x0, was within 2h + skin at the build: the lists still hold it). */
+static int lists_stale(const struct sph_solver *sv, int with_x0) {
+  if (!sv->lists_valid || sv->cfg.list_rebuild == SPH_LISTS_EVERY_STEP) return 1;
+  const double half = 0.5 * skin(sv);
+  return moved2(sv, with_x0) > half * half;
+}
+
+/* The build positions and the count, after a build of the lists at the current positions. */
+static void lists_built(struct sph_solver *sv) {
+  grow_arrays(sv);
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  for (int c = 0; c < 3; c++) memcpy(sv->x_list[c], f->x[c], f->n * sizeof(double));
+  sv->lists_valid = 1;
+  sv->list_builds++;
+}
+
+/* Lists, γ and ∇γ_as at the current positions (the start of a step). */
 static void neighbours(struct sph_solver *sv) {
   /* With the dynamic γ, γ is state: keep it through the lists' closed-form evaluation. */
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const int keep = sv->cfg.gamma_dynamic && sv->cap[SPH_KIND_FLUID] >= f->n && sv->gamma_n;
   if (keep) memcpy(sv->gamma_n, f->gamma, f->n * sizeof(double));
   double t0 = cmn_wall_time();
-  if (sv->gamma_current) {
+  if (!lists_stale(sv, 0)) {
+    if (!sv->gamma_current) {
+      sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+      timed(sv, SPH_PHASE_WALLS, t0);
+    }
+  } else if (sv->gamma_current) {
     sph_nbrs_rebuild_reuse(&sv->nb, &sv->sys, &sv->kernel, skin(sv));
     timed(sv, SPH_PHASE_LISTS, t0);
+    lists_built(sv);
   } else {
     sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
     t0 = timed(sv, SPH_PHASE_LISTS, t0);
+    lists_built(sv);
     sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
     timed(sv, SPH_PHASE_WALLS, t0);
   }
   sv->gamma_current = 1;
   grow_arrays(sv);
   if (keep) memcpy(f->gamma, sv->gamma_n, f->n * sizeof(double));
+}
+
+/* In the predictor and the corrector, before γ is refreshed: with list_rebuild = when_needed,
+ * rebuild the lists at these positions if a particle (here or at x0) has moved more than skin/2
+ * since their build. */
+static void lists_check(struct sph_solver *sv) {
+  if (sv->cfg.list_rebuild == SPH_LISTS_EVERY_STEP || !lists_stale(sv, 1)) return;
+  const double t0 = cmn_wall_time();
+  sph_nbrs_build(&sv->nb, &sv->sys, skin(sv));
+  timed(sv, SPH_PHASE_LISTS, t0);
+  lists_built(sv);
 }
 
 /* Dynamic γ, M(4), by the trapezoidal rule from the start of the step: the particles moved by
@@ -770,6 +838,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
       f->x[c][a] = sv->x0[c][a] + 0.5 * dt * sv->v0[c][a];
     }
   wrap(sv);
+  lists_check(sv);
   refresh_gamma(sv);
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
   continuity(sv, 0.5 * dt);
@@ -794,6 +863,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
     dmax = fmax(dmax, d2);
   }
   wrap(sv);
+  lists_check(sv);
   refresh_gamma(sv);
   sv->gamma_current = 1;
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)f->v, dt);

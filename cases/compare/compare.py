@@ -35,8 +35,8 @@ Problem keys (all required unless a default is given):
   time: end, interval       [s]; SPH writes its particles every `interval`
   compare: [t...]           compare times, each a multiple of time.interval
   jump: p, u                the scales of the L1 differences [Pa, m/s]
-  sph: dr [list], h_over_dr (2), diffusion (ferrari), open_gradient (difference; sabre-sph's
-                            numerics.open_gradient)
+  sph: dr [list], h_over_dr (2), diffusion (ferrari), open_gradient (sabre-sph's
+                            numerics.open_gradient; its default when absent)
   fv1d: cells, flux (godunov), reconstruction (mc)
   reflection (optional): x_min, times, amplitude
   criteria: l1 (fraction of the jump at the finest Δr, every compare time), falling (true: the
@@ -122,11 +122,12 @@ def write_sph(prob, problem_dir, run_dir, dr):
                   "nu": 0.0},
         "initial": {"pressure": str(prob["initial"]["p"]),
                     "velocity": [str(prob["initial"]["u"])]},
-        "numerics": {"diffusion": sph.get("diffusion", "ferrari"),
-                     "open_gradient": sph.get("open_gradient", "difference")},
+        "numerics": {"diffusion": sph.get("diffusion", "ferrari")},
         "time": {"end": float(prob["time"]["end"]),
                  "output_interval": float(prob["time"]["interval"])},
     }
+    if "open_gradient" in sph:
+        case["numerics"]["open_gradient"] = str(sph["open_gradient"])
     groups = []
     for edge, side, sign in ((1, "left", 1.0), (2, "right", -1.0)):
         end = prob[side]

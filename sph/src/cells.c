@@ -362,37 +362,12 @@ void sph_nlist_free(struct sph_nlist *nl) {
   memset(nl, 0, sizeof *nl);
 }
 
-/* Sort row[0..n) into ascending order by merging its ascending runs (the cell search appends one
- * run per stencil cell, each in index order), ping-ponging with tmp (n entries). Sorted rows make
- * every sum over a row run in neighbour-index order, whatever the list radius or the positions at
- * the build: a list kept over several steps and a fresh one then give the same bits. */
-static void sort_row(size_t *row, size_t n, size_t *tmp) {
-  size_t i = 1;
-  while (i < n && row[i - 1] < row[i]) i++;
-  if (i >= n) return;
-  size_t *src = row, *dst = tmp;
-  for (;;) {
-    size_t runs = 0;
-    for (size_t lo = 0; lo < n; runs++) {
-      size_t mid = lo + 1;
-      while (mid < n && src[mid - 1] < src[mid]) mid++;
-      size_t hi = mid;
-      if (hi < n) {
-        hi++;
-        while (hi < n && src[hi - 1] < src[hi]) hi++;
-      }
-      size_t p = lo, q = mid, o = lo;
-      while (p < mid && q < hi) dst[o++] = src[p] < src[q] ? src[p++] : src[q++];
-      while (p < mid) dst[o++] = src[p++];
-      while (q < hi) dst[o++] = src[q++];
-      lo = hi;
-    }
-    size_t *t = src;
-    src = dst;
-    dst = t;
-    if (runs == 1) break;
-  }
-  if (src != row) memcpy(row, src, n * sizeof *row);
+/* Ascending neighbour index, for qsort: sorted rows make every sum over a row run in
+ * neighbour-index order, whatever the list radius or the positions at the build, so that a list
+ * kept over several steps and a fresh one give the same bits. */
+static int by_index(const void *x, const void *y) {
+  const size_t a = *(const size_t *)x, b = *(const size_t *)y;
+  return (a > b) - (a < b);
 }
 
 /* The naive search visits the candidates in index order: its rows are sorted as built. */
@@ -568,31 +543,20 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
       }
     }
   }
-  size_t maxrow = 0;
-  for (size_t i = 0; i < pq->n; i++) {
-    if (nl->offset[i + 1] > maxrow) maxrow = nl->offset[i + 1];
-    nl->offset[i + 1] += nl->offset[i];
-  }
+  for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
   nlist_reserve(nl);
-  /* Rows into place, each sorted by neighbour index (sort_row). */
+  /* Rows into place, each sorted by neighbour index (by_index). */
 #ifdef _OPENMP
-#pragma omp parallel
+#pragma omp parallel for schedule(dynamic, 64)
 #endif
-  {
-    size_t *tmp = cmn_malloc((maxrow + 1) * sizeof *tmp);
-#ifdef _OPENMP
-#pragma omp for schedule(dynamic, 64)
-#endif
-    for (size_t ci = 0; ci < c->ncells; ci++) {
-      if (startq[ci] == startq[ci + 1]) continue;
-      const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
-      for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
-        size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];
-        memcpy(nl->index + nl->offset[i], from, len * sizeof *from);
-        sort_row(nl->index + nl->offset[i], len, tmp);
-        from += len;
-      }
+  for (size_t ci = 0; ci < c->ncells; ci++) {
+    if (startq[ci] == startq[ci + 1]) continue;
+    const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
+    for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
+      size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];
+      memcpy(nl->index + nl->offset[i], from, len * sizeof *from);
+      if (len > 1) qsort(nl->index + nl->offset[i], len, sizeof *nl->index, by_index);
+      from += len;
     }
-    free(tmp);
   }
 }

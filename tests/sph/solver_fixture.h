@@ -29,6 +29,23 @@ static inline void fixture_system_from_yaml(struct sph_system *s, const char *te
   cmn_case_free(c);
 }
 
+/* A flow at 0.5 m/s through a 2D box 0.4 m × 0.3 m open at both ends (velocity inlet on x−,
+ * outlet at p = 0 on x+), Δr = 0.025 m: particles created at the inlet, deleted at the outlet
+ * (tests/sph/test_open_mass.c, tests/sph/test_list_reuse.c). */
+#define FIXTURE_THROUGH_CASE                                                       \
+  "geometry:\n"                                                                    \
+  "  dimension: 2\n"                                                               \
+  "  dr: 0.025\n"                                                                  \
+  "  first_row: 1\n"                                                               \
+  "  walls: [{type: box, lo: [0, 0], hi: [0.4, 0.3], open: [x-, x+]}]\n"           \
+  "  fluid: [{type: box, lo: [0, 0], hi: [0.4, 0.3]}]\n"                           \
+  "fluid: {rho0: 1000, c0: 20}\n"                                                  \
+  "initial: {velocity: [0.5, 0]}\n"                                                \
+  "time: {end: 1}\n"                                                               \
+  "open_boundaries:\n"                                                             \
+  "  - {name: in, wall: 0, faces: [x-], impose: velocity, normal_velocity: 0.5}\n" \
+  "  - {name: out, wall: 0, faces: [x+], impose: pressure, pressure: 0}\n"
+
 /* A solver from a whole case text with its force and open-boundary groups resolved against the
  * mesh, as `sabre-sph run` sets it up (fatal mode: the case is good). Free with
  * fixture_solver_destroy(). */
@@ -111,6 +128,7 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->gamma_factor = 0.05;
   cfg->skin_over_h = 0.2;
   cfg->list_rebuild = SPH_LISTS_WHEN_NEEDED;
+  cfg->open_gradient_difference = 0;
   cfg->dt_max = INFINITY;
   cfg->density_band[0] = 0.5;
   cfg->density_band[1] = 1.5;

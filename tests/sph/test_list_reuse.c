@@ -132,20 +132,7 @@ static void test_periodic(void **state) {
  * outlet (each creation or deletion drops the lists), vertex masses varying. */
 static void test_open_through(void **state) {
   (void)state;
-  check("open through-flow",
-        "geometry:\n"
-        "  dimension: 2\n"
-        "  dr: 0.025\n"
-        "  first_row: 1\n"
-        "  walls: [{type: box, lo: [0, 0], hi: [0.4, 0.3], open: [x-, x+]}]\n"
-        "  fluid: [{type: box, lo: [0, 0], hi: [0.4, 0.3]}]\n"
-        "fluid: {rho0: 1000, c0: 20}\n"
-        "initial: {velocity: [0.5, 0]}\n"
-        "time: {end: 1}\n"
-        "open_boundaries:\n"
-        "  - {name: in, wall: 0, faces: [x-], impose: velocity, normal_velocity: 0.5}\n"
-        "  - {name: out, wall: 0, faces: [x+], impose: pressure, pressure: 0}\n",
-        "", 400);
+  check("open through-flow", FIXTURE_THROUGH_CASE, "", 400);
 }
 
 static void test_option_error(void **state) {

@@ -30,6 +30,8 @@ static void test_defaults(void **state) {
   assert_int_equal(cfg.gravity_correction, 2);
   assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
   assert_int_equal(cfg.gamma_dynamic, 0);
+  assert_int_equal(cfg.open_gradient_difference, 0);
+  assert_int_equal(cfg.list_rebuild, SPH_LISTS_WHEN_NEEDED);
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
@@ -57,6 +59,8 @@ static void test_errors(void **state) {
   expect("numerics: {cfll: 0.2}\n", "numerics.cfll", "");
   expect("numerics: {diffusion: laplace}\n", "numerics.diffusion", "ferrari");
   expect("numerics: {gradient_k: 3}\n", "numerics.gradient_k", "");
+  expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
+  expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
   expect("initial: {pressure: hydrostatic}\n", "initial.pressure", "gravity");
   expect("initial: {velocity: [1]}\n", "initial.velocity", "");

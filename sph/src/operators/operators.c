@@ -61,9 +61,10 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
         const double un = approach(pa, a, pb, b);
         if (un < 0.0) fb -= impedance[a] * un;
       }
-      const double sum = ratio * fb + fa / ratio;
+      double sum = ratio * fb + fa / ratio;
       if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
-      const double t = vb * (sum - fc * (ratio + 1.0 / ratio)) * pr.dwdr_over_r;
+      if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
+      const double t = vb * sum * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
     }
   }
@@ -77,10 +78,10 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       const double un = approach(pa, a, ps, j);
       if (un < 0.0) fs -= impedance[a] * un;
     }
-    const double t = ratio * fs + fa / ratio;
+    double t = ratio * fs + fa / ratio;
     if (push_only && t < 0.0) continue;
-    const double tc = t - fc * (ratio + 1.0 / ratio);
-    for (int c = 0; c < 3; c++) g[c] -= tc * op->nb->grad_gamma_as[c][q];
+    if (fc != 0.0) t -= fc * (ratio + 1.0 / ratio);
+    for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
   }
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = g[c] * inv_gamma;

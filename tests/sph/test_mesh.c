@@ -175,6 +175,65 @@ static void test_stl_errors(void **state) {
   sph_mesh_free(&c);
 }
 
+/* Open solids of an ASCII STL: the tetrahedron written as two solids, 'base' (three facets) and
+ * 'lid' (one); open_solids flags the named ones, the parts record their element ranges (kept by
+ * refinement), and unknown names or names with a binary file are errors. */
+static void test_stl_open_solids(void **state) {
+  (void)state;
+  char text[4096], msg[1024];
+  snprintf(text, sizeof text,
+           "solid base\n%sendsolid base\nsolid  lid \nfacet normal 1 1 1\nouter loop\n"
+           "vertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid lid\n",
+           tetra_facets);
+  const char *path = test_write("two.stl", text);
+  const char *lid[] = {"lid"}, *none[] = {"top"};
+  struct sph_stl_open open = {0, 1, lid};
+  struct sph_mesh m;
+  sph_mesh_init(&m, 3);
+  assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), 0);
+  assert_int_equal(sph_mesh_check(&m, NULL, msg, sizeof msg), 0);
+  assert_int_equal(m.nelem, 4);
+  for (size_t e = 0; e < m.nelem; e++)
+    assert_int_equal(m.flags[e] & SPH_FLAG_OPEN, m.source_index[e] == 4 ? SPH_FLAG_OPEN : 0);
+  assert_int_equal(m.nparts, 2);
+  assert_string_equal(m.parts[0].name, "base");
+  assert_true(m.parts[0].first == 1 && m.parts[0].last == 3);
+  assert_string_equal(m.parts[1].name, "lid");
+  assert_true(m.parts[1].first == 4 && m.parts[1].last == 4 && m.parts[1].source == 0);
+  /* refinement keeps the flags (per element) and the parts */
+  sph_mesh_refine(&m, 0.3);
+  size_t nopen = 0;
+  for (size_t e = 0; e < m.nelem; e++) {
+    assert_int_equal(m.flags[e] & SPH_FLAG_OPEN, m.source_index[e] == 4 ? SPH_FLAG_OPEN : 0);
+    nopen += m.source_index[e] == 4;
+  }
+  assert_true(m.nelem > 4 && nopen > 1 && m.nparts == 2 && m.parts[1].first == 4);
+  sph_mesh_free(&m);
+  /* the whole file */
+  open = (struct sph_stl_open){1, 0, NULL};
+  sph_mesh_init(&m, 3);
+  assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), 0);
+  for (size_t e = 0; e < m.nelem; e++) assert_int_equal(m.flags[e], SPH_FLAG_OPEN);
+  sph_mesh_free(&m);
+  /* a name the file does not have */
+  open = (struct sph_stl_open){0, 1, none};
+  sph_mesh_init(&m, 3);
+  assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), -1);
+  assert_non_null(strstr(msg, "two.stl: no solid named 'top'"));
+  sph_mesh_free(&m);
+  /* names with a binary file */
+  struct sph_mesh c;
+  cube(&c);
+  const char *bin = test_path("cube_open.stl");
+  assert_int_equal(sph_mesh_write_stl(&c, bin, 1), 0);
+  sph_mesh_free(&c);
+  open = (struct sph_stl_open){0, 1, lid};
+  sph_mesh_init(&m, 3);
+  assert_int_equal(sph_mesh_read_stl_open(&m, bin, 1.0, 1, &open, msg, sizeof msg), -1);
+  assert_non_null(strstr(msg, "a binary STL file has no solid names"));
+  sph_mesh_free(&m);
+}
+
 static void test_refine_3d(void **state) {
   (void)state;
   /* A coarse tetrahedron refined at dr: closed, conforming, small, same area and volume. */
@@ -296,12 +355,10 @@ static void test_polyline_file(void **state) {
 
 int main(void) {
   sabre_fp_traps_on();
-  const struct CMUnitTest tests[] = {cmocka_unit_test(test_box_closed),
-                                     cmocka_unit_test(test_stl_roundtrip_ascii),
-                                     cmocka_unit_test(test_stl_roundtrip_binary),
-                                     cmocka_unit_test(test_stl_errors),
-                                     cmocka_unit_test(test_refine_3d),
-                                     cmocka_unit_test(test_polygon_2d),
-                                     cmocka_unit_test(test_polyline_file)};
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_box_closed),           cmocka_unit_test(test_stl_roundtrip_ascii),
+      cmocka_unit_test(test_stl_roundtrip_binary), cmocka_unit_test(test_stl_errors),
+      cmocka_unit_test(test_stl_open_solids),      cmocka_unit_test(test_refine_3d),
+      cmocka_unit_test(test_polygon_2d),           cmocka_unit_test(test_polyline_file)};
   return cmocka_run_group_tests(tests, test_dir_setup, test_dir_teardown);
 }

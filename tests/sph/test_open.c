@@ -194,6 +194,15 @@ static void test_parse_errors(void **state) {
          "open_boundaries[0].poiseuille", "exactly one of 'u_max'");
   EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 25}",
          "open_boundaries[0].poiseuille.u_max", "subsonic");
+  EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 1, ramp: -2}",
+         "open_boundaries[0].poiseuille.ramp", ">= 0");
+  EXPECT("solids: [inlet], impose: pressure, pressure: 0", "open_boundaries[0].solids",
+         "give one of 'edges', 'faces' and 'solids', not two");
+  expect_error(
+      "open_boundaries:\n  - {name: o, wall: 0, solids: [inlet], impose: pressure, "
+      "pressure: 0}\n",
+      "open_boundaries[0].solids",
+      "solids select parts of an STL wall; geometry.walls[0] is a box");
   EXPECT("impose: velocity, poiseuille: {shape: circle, center: [1, 0.25], radius: 1, u_max: 1}",
          "open_boundaries[0].poiseuille.shape", "plates in 2D");
   EXPECT("impose: velocity, stokes5: {depth: 0.5, height: 0.5, length: 2.5}",
@@ -442,6 +451,13 @@ static void test_values_2d(void **state) {
   src_make(&fx, base2d, 2,
            "impose: velocity, poiseuille: {center: [0, 0.3], radius: 0.1, flux: 0.004}");
   assert_rel(src_eval(&fx, 0.0, 0.0, 0.3, 0.0, 1.0, 0.0, 0.0, NAN).un, 3.0 * 0.004 / 0.4, 1e-14);
+  src_free(&fx);
+  /* the start-up ramp s²(3 − 2s), s = min(t/T, 1): 0 before the start, 1/2 at T/2, 1 from T */
+  src_make(&fx, base2d, 2,
+           "impose: velocity, poiseuille: {center: [0, 0.3], radius: 0.1, u_max: 0.2, ramp: 4}");
+  const double tr[6] = {-1.0, 0.0, 1.0, 2.0, 4.0, 9.0}, fr[6] = {0.0, 0.0, 0.15625, 0.5, 1.0, 1.0};
+  for (int i = 0; i < 6; i++)
+    assert_rel(src_eval(&fx, tr[i], 0.0, 0.35, 0.0, 1.0, 0.0, 0.0, NAN).un, 0.15 * fr[i], 1e-14);
   src_free(&fx);
   /* hydrostatic: the Tait profile below bed + depth, zero above; measured: the level given */
   src_make(&fx, base2d, 2, "impose: pressure, hydrostatic: {depth: 0.3, bed: 0.05}");
@@ -977,6 +993,130 @@ static void test_still_water(void **state) {
   fixture_solver_destroy(sv[1]);
 }
 
+/* Open solids of an STL wall: a 3D box tank written as an ASCII STL with the solids 'inlet'
+ * (x = 0), 'outlet' (x = L) and 'walls', `open_solids: [inlet, outlet]` in the geometry and groups
+ * selecting them by `solids`, runs the through-flow as the same box given as a `box` wall with
+ * `open: [x-, x+]` and `faces`; errors name the key. */
+static void stl_quad(char *out, size_t len, const double q[4][3]) {
+  const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  for (int t = 0; t < 2; t++) {
+    size_t n = strlen(out);
+    snprintf(out + n, len - n, "facet normal 0 0 0\nouter loop\n");
+    for (int k = 0; k < 3; k++) {
+      n = strlen(out);
+      const double *x = q[tri[t][k]];
+      snprintf(out + n, len - n, "vertex %.17g %.17g %.17g\n", x[0], x[1], x[2]);
+    }
+    n = strlen(out);
+    snprintf(out + n, len - n, "endloop\nendfacet\n");
+  }
+}
+
+static double mean_u(const struct sph_solver *sv) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  double u = 0.0;
+  for (size_t a = 0; a < f->n; a++) u += f->v[0][a];
+  return u / (double)f->n;
+}
+
+static void test_stl_solids(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  const double L = 0.2, W = 0.125, H = 0.125;
+  /* faces with their corners counter-clockwise seen from outside the tank (outward normals) */
+  const double xm[4][3] = {{0, 0, 0}, {0, 0, H}, {0, W, H}, {0, W, 0}};
+  const double xp[4][3] = {{L, 0, 0}, {L, W, 0}, {L, W, H}, {L, 0, H}};
+  const double walls[4][4][3] = {{{0, 0, 0}, {L, 0, 0}, {L, 0, H}, {0, 0, H}},
+                                 {{0, W, 0}, {0, W, H}, {L, W, H}, {L, W, 0}},
+                                 {{0, 0, 0}, {0, W, 0}, {L, W, 0}, {L, 0, 0}},
+                                 {{0, 0, H}, {L, 0, H}, {L, W, H}, {0, W, H}}};
+  static char stl[16384];
+  snprintf(stl, sizeof stl, "solid walls\n");
+  for (int k = 0; k < 4; k++) stl_quad(stl, sizeof stl, walls[k]);
+  snprintf(stl + strlen(stl), sizeof stl - strlen(stl), "endsolid walls\nsolid inlet\n");
+  stl_quad(stl, sizeof stl, xm);
+  snprintf(stl + strlen(stl), sizeof stl - strlen(stl), "endsolid inlet\nsolid outlet\n");
+  stl_quad(stl, sizeof stl, xp);
+  snprintf(stl + strlen(stl), sizeof stl - strlen(stl), "endsolid outlet\n");
+  const char *path = write_file("tank.stl", stl);
+  static const char tmpl[] =
+      "geometry:\n"
+      "  dimension: 3\n"
+      "  dr: 0.025\n"
+      "  first_row: 1\n"
+      "  walls: [%s]\n"
+      "  fluid: [{type: box, lo: [0, 0, 0], hi: [0.2, 0.125, 0.125]}]\n"
+      "fluid: {rho0: 1000, c0: 20}\n"
+      "initial: {velocity: [0.2, 0, 0]}\n"
+      "time: {end: 1}\n"
+      "open_boundaries:\n"
+      "  - {name: in, wall: 0, %s, impose: velocity, normal_velocity: 0.2}\n"
+      "  - {name: out, wall: 0, %s, impose: pressure, pressure: 0}\n";
+  char wall_stl[600], text[2][4096];
+  snprintf(wall_stl, sizeof wall_stl, "{type: stl, file: '%s', open_solids: [inlet, outlet]}",
+           path);
+  snprintf(text[0], sizeof text[0], tmpl, wall_stl, "solids: [inlet]", "solids: [outlet]");
+  snprintf(text[1], sizeof text[1], tmpl,
+           "{type: box, lo: [0, 0, 0], hi: [0.2, 0.125, 0.125], open: [x-, x+]}", "faces: [x-]",
+           "faces: [x+]");
+  struct sph_solver *sv[2] = {fixture_solver_from_case(text[0]), fixture_solver_from_case(text[1])};
+  size_t nopen[2][2] = {{0, 0}, {0, 0}};
+  for (int k = 0; k < 2; k++) {
+    const struct sph_parts *sg = &sv[k]->sys.part[SPH_KIND_SEGMENT];
+    for (size_t j = 0; j < sg->n; j++)
+      if (sv[k]->open->seg_group[j] >= 0) {
+        nopen[k][sv[k]->open->seg_group[j]]++;
+        assert_true(sg->flags[j] & SPH_FLAG_OPEN);
+        /* the inlet's normal is +x, the outlet's −x */
+        assert_true(fabs(sg->normal[0][j] - (sv[k]->open->seg_group[j] == 0 ? 1.0 : -1.0)) < 1e-12);
+      }
+  }
+  assert_true(nopen[0][0] > 0 && nopen[0][1] > 0 && nopen[1][0] > 0 && nopen[1][1] > 0);
+  char msg[1024];
+  const double t_end = 0.25;
+  for (int k = 0; k < 2; k++)
+    while (sv[k]->time < t_end - 1e-12)
+      if (sph_solver_step(sv[k], t_end - sv[k]->time, msg, sizeof msg) != 0) fail_msg("%s", msg);
+  const double u[2] = {mean_u(sv[0]), mean_u(sv[1])};
+  print_message(
+      "STL tank: %zu inlet and %zu outlet segments (box: %zu, %zu); at t = %g s mean u %.5f m/s "
+      "(box %.5f), created %ld/%ld, deleted %ld/%ld\n",
+      nopen[0][0], nopen[0][1], nopen[1][0], nopen[1][1], t_end, u[0], u[1],
+      sv[0]->open->created[0], sv[1]->open->created[0], sv[0]->open->deleted[1],
+      sv[1]->open->deleted[1]);
+  assert_true(sv[0]->open->created[0] > 0 && sv[0]->open->deleted[1] > 0);
+  assert_true(fabs(u[0] - 0.2) <= 0.02 * 0.2 && fabs(u[0] - u[1]) <= 0.02 * 0.2);
+  fixture_solver_destroy(sv[0]);
+  fixture_solver_destroy(sv[1]);
+  /* a group naming a solid the file does not have (the key, the wall and the file's solids), and
+   * one selecting a solid that is not open */
+  const char *bad[2][3] = {{"solids: [nozzle]", "open_boundaries[1].solids[0]",
+                            "geometry.walls[0] has no solid named 'nozzle' (its solids: 'walls', "
+                            "'inlet', 'outlet')"},
+                           {"solids: [walls]", "open_boundaries[1].solids",
+                            "a selected solid of geometry.walls[0] is a wall, not open (list it "
+                            "in the wall's 'open_solids')"}};
+  for (int k = 0; k < 2; k++) {
+    snprintf(text[0], sizeof text[0], tmpl, wall_stl, "solids: [inlet]", bad[k][0]);
+    char err[512];
+    struct cmn_case *c = cmn_case_parse(text[0], "case.yaml", err, sizeof err);
+    assert_non_null(c);
+    struct sph_geometry g;
+    sph_geometry_read(&g, c);
+    cmn_case_set_fatal(c, 0);
+    struct sph_config *cfg = calloc(1, sizeof *cfg);
+    assert_int_equal(sph_config_read(cfg, c, 3), 0);
+    assert_int_equal(sph_open_check_mesh(&cfg->open, c, &g.walls), -1);
+    const char *e = cmn_case_error(c);
+    print_message("%s\n", e);
+    assert_non_null(strstr(e, bad[k][1]));
+    assert_non_null(strstr(e, bad[k][2]));
+    free(cfg);
+    sph_geometry_free(&g);
+    cmn_case_free(c);
+  }
+}
+
 /* `sabre-sph run` with a bad open_boundaries section: exit status 2, the key in the message, and
  * no run directory written. */
 static char run_case[512], run_out[512];
@@ -1017,6 +1157,7 @@ int main(void) {
       cmocka_unit_test(test_solve_3d),    cmocka_unit_test(test_linearised_exact),
       cmocka_unit_test(test_vertex_rule), cmocka_unit_test(test_failed_solve),
       cmocka_unit_test(test_still_water), cmocka_unit_test(test_run_errors),
+      cmocka_unit_test(test_stl_solids),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -214,7 +214,8 @@ static void test_io_terms(void **state) {
   assert_true(with <= 1e-6 && without >= 1e-4); /* with: the trapezoidal rule of J(11) */
 }
 
-/* Creation and deletion by hand: a vertex given 1.25 particle masses above its wall mass creates
+/* Creation and deletion by hand: a vertex given 1.25 particle masses (ρ_v Δr², ρ_v its solved
+ * density) above its wall mass creates
  * one particle Δr/2 in front of it; a particle put behind the open face is deleted and its mass
  * goes to the two vertices of the segment it crossed. */
 static void test_create_delete_hand(void **state) {
@@ -225,7 +226,7 @@ static void test_create_delete_hand(void **state) {
   sph_solver_evaluate(sv);
   struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX], *f = &sv->sys.part[SPH_KIND_FLUID];
   const double m_ref = 1000.0 * 0.025 * 0.025, m_start = total_mass(sv);
-  assert_true(fabs(op->particle_mass - m_ref) <= 1e-15 * m_ref);
+  assert_true(fabs(op->cell_volume - 0.025 * 0.025) <= 1e-15 * 0.025 * 0.025);
   size_t iv = (size_t)-1, iu = (size_t)-1;
   for (size_t i = 0; i < v->n; i++) {
     if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.075) < 1e-12) iv = i;
@@ -233,7 +234,12 @@ static void test_create_delete_hand(void **state) {
   }
   assert_true(iv != (size_t)-1 && iu != (size_t)-1);
   const double base = op->mass_base[iv];
-  v->mass[iv] = base + 1.25 * m_ref;
+  /* the boundary's density, say 3 % above ρ0 (a pressure level): a particle of volume Δr² */
+  v->rho[iv] = 1.03 * 1000.0;
+  const double m_new = 1.03 * m_ref;
+  v->mass[iv] = base + 1.0 * m_ref; /* less than m_new: nothing */
+  assert_int_equal(sph_open_create_particles(op, sv), 0);
+  v->mass[iv] = base + 1.25 * m_new;
   const double m1 = total_mass(sv);
   const size_t n0 = f->n;
   const int64_t id = sv->sys.next_id;
@@ -246,11 +252,11 @@ static void test_create_delete_hand(void **state) {
   const double off = (sv->vertex_phi + 0.5) * 0.025;
   assert_true(fabs(f->x[0][a] - (0.3 - off)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
   for (int c = 0; c < 3; c++) assert_true(f->v[c][a] == v->v[c][iv]);
-  assert_true(f->rho[a] == v->rho[iv] && f->mass[a] == op->particle_mass);
-  assert_true(fabs(v->mass[iv] - (base + 0.25 * m_ref)) <= 1e-15 * (base + m_ref));
+  assert_true(f->rho[a] == v->rho[iv] && fabs(f->mass[a] - m_new) <= 1e-15 * m_new);
+  assert_true(fabs(v->mass[iv] - (base + 0.25 * m_new)) <= 1e-15 * (base + m_ref));
   assert_true(fabs(total_mass(sv) - m1) <= 1e-15 * m1);
   assert_int_equal(op->created[0], 1);
-  /* a second call: 0.25 m_ref left, nothing */
+  /* a second call: 0.25 m_new left, nothing */
   assert_int_equal(sph_open_create_particles(op, sv), 0);
   v->mass[iv] = base; /* back to the wall mass */
   sph_solver_sync(sv);
@@ -260,13 +266,12 @@ static void test_create_delete_hand(void **state) {
   sph_solver_sync(sv);
   sph_solver_evaluate(sv);
   assert_true(sv->nb.behind[a]);
-  const double mv = v->mass[iv], mu = v->mass[iu], m2 = total_mass(sv);
+  const double mv = v->mass[iv], mu = v->mass[iu], m2 = total_mass(sv), f_mass = f->mass[a];
   assert_int_equal(sph_open_delete_particles(op, sv), 1);
   f = &sv->sys.part[SPH_KIND_FLUID];
   assert_int_equal(f->n, n0);
   for (size_t b = 0; b < f->n; b++) assert_true(f->id[b] != id);
-  assert_true(v->mass[iv] == mv + 0.5 * op->particle_mass &&
-              v->mass[iu] == mu + 0.5 * op->particle_mass);
+  assert_true(v->mass[iv] == mv + 0.5 * f_mass && v->mass[iu] == mu + 0.5 * f_mass);
   assert_true(fabs(total_mass(sv) - m2) <= 1e-15 * m2);
   assert_int_equal(op->deleted[0], 1);
   print_message(

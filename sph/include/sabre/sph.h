@@ -213,6 +213,14 @@ double sph_element_distance(int dim, const double v[3][3], const double *a, doub
  * triangle number in an STL file) so that checks can name it.
  * ------------------------------------------------------------------------------------------- */
 
+/** A named part of a source: the elements numbered first..last of that source (an ASCII STL
+ *  file's `solid NAME` ... `endsolid` block). */
+struct sph_mesh_part {
+  int source;       /**< index into sources[] */
+  long first, last; /**< element numbers (source_index) of the part, inclusive */
+  char name[64];    /**< the solid's name (truncated to 63 bytes) */
+};
+
 struct sph_mesh {
   int dim;
   size_t nvert, nelem;
@@ -225,6 +233,8 @@ struct sph_mesh {
   long *source_line;   /**< line of a text file where the element is written (0 if none) */
   char **sources;      /**< e.g. "geometry.walls[1] (box)" or "tank.stl" */
   int nsources;
+  struct sph_mesh_part *parts; /**< named parts of sources (STL solids) */
+  int nparts;
   size_t cap_vert, cap_elem;
 };
 
@@ -232,6 +242,8 @@ void sph_mesh_init(struct sph_mesh *m, int dim);
 void sph_mesh_free(struct sph_mesh *m);
 /** Register a source name for messages; returns its index. */
 int sph_mesh_add_source(struct sph_mesh *m, const char *name);
+/** Record that elements first..last of source are the part called name (copied, truncated). */
+void sph_mesh_add_part(struct sph_mesh *m, int source, const char *name, long first, long last);
 size_t sph_mesh_add_vertex(struct sph_mesh *m, const double *x);
 /**
  * Add an element on vertices v[0..dim-1]. In 2D/3D the normal follows from the orientation;
@@ -294,6 +306,18 @@ int sph_mesh_read_polyline(struct sph_mesh *m, const char *path, int fluid_insid
  */
 int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fluid_inside,
                       char *msg, size_t msglen);
+/** Which facets of an STL file are open boundaries (SPH_FLAG_OPEN): all of them, or those of the
+ *  ASCII file's solids with the given names (`solid NAME` ... `endsolid`). */
+struct sph_stl_open {
+  int all;                  /**< 1: every facet of the file */
+  int n;                    /**< number of names */
+  const char *const *names; /**< solid names (case-sensitive), each must be in the file */
+};
+/** sph_mesh_read_stl() with open facets: open == NULL or {0, 0, NULL} flags none. Errors (−1 with a
+ *  message naming the file): a listed name that no solid of the file has, or names with a binary
+ *  file (which has no solid names). */
+int sph_mesh_read_stl_open(struct sph_mesh *m, const char *path, double scale, int fluid_inside,
+                           const struct sph_stl_open *open, char *msg, size_t msglen);
 /** Write the elements of a 3D mesh as STL (binary or ASCII), normals out of the fluid, so that
  *  reading the file back with fluid_inside = 1 returns the same mesh. Returns 0 or -1 (errno). */
 int sph_mesh_write_stl(const struct sph_mesh *m, const char *path, int binary);

@@ -79,6 +79,8 @@ struct sph_open_poiseuille {
   double u_max;     /**< centre-line speed U along the inward normal [m/s] (> 0: inflow); derived
                          from `flux` when that is given */
   double flux;      /**< the volume flux Q it implies (2D: per unit depth) [m^d/s] */
+  double ramp;      /**< start-up time T [s]: the profile is multiplied by s²(3 − 2s),
+                         s = min(t/T, 1), a C¹ rise from 0 at t ≤ 0 to 1 at t ≥ T; 0: none */
 };
 
 /** One open-boundary group: which segments, what is imposed, from where. Plain data. */
@@ -89,9 +91,12 @@ struct sph_open_group {
   long edges[64]; /**< 1-based element numbers within the wall (each must be open) */
   unsigned faces; /**< box and channel walls: the faces selected instead of `edges`, bit 2a the
                        face at the low end of axis a, bit 2a + 1 the high end (0: none) */
-  int imposed;    /**< enum rmn_imposed */
-  int source;     /**< enum sph_open_source_kind */
-  int shock;      /**< enum rmn_shock_model: RMN_SHOCK_EXACT (default) or RMN_SHOCK_LINEARISED */
+  int nsolids;    /**< STL walls: the named solids selected instead of `edges` (0: none) */
+  char solids[8][64];
+  long solid_first[8], solid_last[8]; /**< their element ranges, set by sph_open_check_mesh */
+  int imposed;                        /**< enum rmn_imposed */
+  int source;                         /**< enum sph_open_source_kind */
+  int shock; /**< enum rmn_shock_model: RMN_SHOCK_EXACT (default) or RMN_SHOCK_LINEARISED */
   /** SPH_OPEN_VALUE: the pressure [Pa] or the normal velocity into the fluid [m/s] in expr[0]
    *  (ncomp = 1), or the velocity vector's components [m/s] in expr[0..dim-1] (ncomp = dim); each
    *  a number or an expression of t, x, y (, z). */
@@ -141,7 +146,7 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
  * (`open_boundaries[i].edges`, or `geometry.walls[k]` for an open element no group selects).
  * Returns 0 or -1.
  */
-int sph_open_check_mesh(const struct sph_open_config *oc, struct cmn_case *c,
+int sph_open_check_mesh(struct sph_open_config *oc, struct cmn_case *c,
                         const struct sph_mesh *walls);
 
 /* ---------------------------------------------------------------------------------------------
@@ -259,8 +264,9 @@ struct sph_open {
                                               last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
   int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
   /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
-  double *mass_base;    /**< per vertex: its wall mass (sph_open_mass_base) [kg] */
-  double particle_mass; /**< mass of a created particle, ρ0 Δr^d [kg] */
+  double *mass_base;  /**< per vertex: its wall mass (sph_open_mass_base) [kg] */
+  double cell_volume; /**< Δr^d, the volume of a created particle: its mass is the vertex's solved
+                           density times it [m^d] */
   long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
   struct rmn_workspace *ws;
   double *work; /**< scratch of sph_open_boundary_values(): the Shepard sums of every point */
@@ -322,7 +328,7 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
  * predictor's ṁ) and mass_step[g] = Δt × the group's mass flux.
  */
 /** The wall masses of the open vertices (mass_base: the threshold of particle creation is
- *  mass_base + particle_mass) from the store's vertex masses; sph_solver_init calls it once the
+ *  mass_base + ρ_v Δr^d) from the store's vertex masses; sph_solver_init calls it once the
  *  vertex masses are final (after the repacking). No-op for op == NULL. */
 void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv);
@@ -346,9 +352,10 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv);
 long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *sv, size_t a);
 /**
  * Create a fluid particle at each open vertex whose mass exceeds its wall mass by at least
- * particle_mass (at most one per vertex and call, vertices in index order): at r_v + Δr/2 n_v
- * (n_v the vertex's open normal), with the vertex's solved velocity and density of the last
- * evaluation, mass particle_mass, which the vertex loses. Returns how many were created.
+ * m = ρ_v Δr^d, ρ_v the vertex's solved density of the last evaluation (at most one per vertex and
+ * call, vertices in index order): at r_v + (φ + ½)Δr n_v (n_v the vertex's open normal), with the
+ * vertex's solved velocity and density, mass m (volume Δr^d), which the vertex loses. Returns how
+ * many were created.
  */
 size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv);
 

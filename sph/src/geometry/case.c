@@ -237,8 +237,26 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
       int rc;
       if (type == W_STL) {
         cmn_case_opt_positive(c, key(p, sizeof p, entry, "scale"), 1.0, &scale);
+        /* open boundaries: the whole file, or its ASCII solids by name */
+        struct sph_stl_open op = {0, 0, NULL};
+        cmn_case_opt_bool(c, key(p, sizeof p, entry, "open"), 0, &op.all);
+        key(p, sizeof p, entry, "open_solids");
+        const int nn = cmn_case_seq_length(c, p);
+        const char **names = cmn_calloc((size_t)(nn > 0 ? nn : 0) + 1, sizeof *names);
+        for (int k = 0; k < nn; k++) {
+          char q[300];
+          snprintf(q, sizeof q, "%s[%d]", p, k);
+          cmn_case_get_string(c, q, &names[k]);
+        }
+        if (op.all && nn > 0)
+          cmn_case_fail(c, p,
+                        "give 'open: true' (the whole file) or 'open_solids' (some of its "
+                        "solids), not both");
+        op.n = nn > 0 ? nn : 0;
+        op.names = names;
         int s0 = m->nsources;
-        rc = sph_mesh_read_stl(m, path, scale, fluid == 0, msg, sizeof msg);
+        rc = sph_mesh_read_stl_open(m, path, scale, fluid == 0, &op, msg, sizeof msg);
+        free(names);
         int any_periodic = periodic[0] || periodic[1] || periodic[2];
         if (rc == 0 && !any_periodic) { /* orientation of a closed surface as a whole */
           double vol = sph_mesh_signed_volume(m, s0);

@@ -27,6 +27,7 @@ void sph_mesh_free(struct sph_mesh *m) {
   free(m->source_line);
   for (int i = 0; i < m->nsources; i++) free(m->sources[i]);
   free(m->sources);
+  free(m->parts);
   sph_mesh_init(m, m->dim);
 }
 
@@ -35,6 +36,23 @@ int sph_mesh_add_source(struct sph_mesh *m, const char *name) {
   size_t len = strlen(name) + 1;
   m->sources[m->nsources] = memcpy(cmn_malloc(len), name, len);
   return m->nsources++;
+}
+
+void sph_mesh_add_part(struct sph_mesh *m, int source, const char *name, long first, long last) {
+  m->parts = cmn_realloc(m->parts, (size_t)(m->nparts + 1) * sizeof *m->parts);
+  struct sph_mesh_part *pt = &m->parts[m->nparts++];
+  pt->source = source;
+  pt->first = first;
+  pt->last = last;
+  snprintf(pt->name, sizeof pt->name, "%s", name);
+}
+
+/* The sources and named parts of src into the empty mesh dst (refinement). */
+static void copy_sources(struct sph_mesh *dst, const struct sph_mesh *src) {
+  for (int i = 0; i < src->nsources; i++) sph_mesh_add_source(dst, src->sources[i]);
+  for (int i = 0; i < src->nparts; i++)
+    sph_mesh_add_part(dst, src->parts[i].source, src->parts[i].name, src->parts[i].first,
+                      src->parts[i].last);
 }
 
 size_t sph_mesh_add_vertex(struct sph_mesh *m, const double *x) {
@@ -241,7 +259,7 @@ static double dist3(const double *x, const double *y) {
 static void refine_2d(struct sph_mesh *m, double dr) {
   struct sph_mesh out;
   sph_mesh_init(&out, 2);
-  for (int i = 0; i < m->nsources; i++) sph_mesh_add_source(&out, m->sources[i]);
+  copy_sources(&out, m);
   for (size_t i = 0; i < m->nvert; i++) sph_mesh_add_vertex(&out, m->vert[i]);
   for (size_t e = 0; e < m->nelem; e++) {
     const double *x0 = m->vert[m->elem[e][0]], *x1 = m->vert[m->elem[e][1]];
@@ -330,7 +348,7 @@ static size_t refine_3d_pass(struct sph_mesh *m, double lmax) {
     }
   struct sph_mesh out;
   sph_mesh_init(&out, 3);
-  for (int i = 0; i < m->nsources; i++) sph_mesh_add_source(&out, m->sources[i]);
+  copy_sources(&out, m);
   for (size_t i = 0; i < m->nvert; i++) sph_mesh_add_vertex(&out, m->vert[i]);
   for (size_t e = 0; e < m->nelem; e++) {
     int k = longest_edge(m, e, NULL);

@@ -17,8 +17,8 @@
 
 /* Add one facet read from the file; checks the facet normal against the vertex order. */
 static int add_facet(struct sph_mesh *m, const double fn[3], double v[3][3], double scale,
-                     int fluid_inside, int source, long tri, const char *where, char *msg,
-                     size_t msglen) {
+                     int fluid_inside, uint8_t flags, int source, long tri, const char *where,
+                     char *msg, size_t msglen) {
   double e1[3], e2[3], rh[3];
   for (int a = 0; a < 3; a++) {
     e1[a] = v[1][a] - v[0][a];
@@ -42,7 +42,7 @@ static int add_facet(struct sph_mesh *m, const double fn[3], double v[3][3], dou
     idx[1] = idx[2];
     idx[2] = t;
   }
-  sph_mesh_add_element(m, idx, 0, 0, source, tri);
+  sph_mesh_add_element(m, idx, 0, flags, source, tri);
   return 0;
 }
 
@@ -87,22 +87,44 @@ static int read_numbers(struct lexer *lx, double *x, const char *what, const cha
   return 0;
 }
 
+/* The rest of the current line, blanks trimmed at both ends (a solid's name; may be empty). */
+static void rest_of_line(struct lexer *lx, char *out, size_t len) {
+  while (lx->p < lx->end && (*lx->p == ' ' || *lx->p == '\t')) lx->p++;
+  const char *b = lx->p;
+  while (lx->p < lx->end && *lx->p != '\n') lx->p++;
+  const char *e = lx->p;
+  while (e > b && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) e--;
+  size_t n = (size_t)(e - b) < len - 1 ? (size_t)(e - b) : len - 1;
+  memcpy(out, b, n);
+  out[n] = '\0';
+}
+
 static int read_ascii(struct sph_mesh *m, const char *buf, size_t len, const char *path,
-                      double scale, int fluid_inside, int source, char *msg, size_t msglen) {
+                      double scale, int fluid_inside, const struct sph_stl_open *open,
+                      unsigned char *found, int source, char *msg, size_t msglen) {
   struct lexer lx = {buf, buf + len, 1, ""};
   long tri = 0;
   int solids = 0;
   while (next_token(&lx)) {
     if (strcmp(lx.tok, "solid") != 0)
       return geom_fail(msg, msglen, "%s:%ld: expected 'solid', got '%s'", path, lx.line, lx.tok);
-    skip_line(&lx); /* the solid's name */
+    char name[256];
+    rest_of_line(&lx, name, sizeof name);
+    uint8_t flags = open && open->all ? SPH_FLAG_OPEN : 0;
+    for (int k = 0; open && k < open->n; k++)
+      if (strcmp(open->names[k], name) == 0) {
+        flags = SPH_FLAG_OPEN;
+        found[k] = 1;
+      }
     solids++;
+    const long first = tri + 1;
     for (;;) {
       if (!next_token(&lx))
         return geom_fail(msg, msglen, "%s:%ld: expected 'facet' or 'endsolid', got end of file",
                          path, lx.line);
       if (strcmp(lx.tok, "endsolid") == 0) {
         skip_line(&lx);
+        if (tri >= first) sph_mesh_add_part(m, source, name, first, tri);
         break;
       }
       if (strcmp(lx.tok, "facet") != 0)
@@ -122,7 +144,8 @@ static int read_ascii(struct sph_mesh *m, const char *buf, size_t len, const cha
         return -1;
       char where[1100];
       snprintf(where, sizeof where, "%s:%ld", path, line);
-      if (add_facet(m, fn, v, scale, fluid_inside, source, ++tri, where, msg, msglen)) return -1;
+      if (add_facet(m, fn, v, scale, fluid_inside, flags, source, ++tri, where, msg, msglen))
+        return -1;
     }
   }
   if (solids == 0 || tri == 0) return geom_fail(msg, msglen, "%s: no facets", path);
@@ -144,6 +167,11 @@ static void put_f32(unsigned char *p, float f) {
 
 int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fluid_inside,
                       char *msg, size_t msglen) {
+  return sph_mesh_read_stl_open(m, path, scale, fluid_inside, NULL, msg, msglen);
+}
+
+int sph_mesh_read_stl_open(struct sph_mesh *m, const char *path, double scale, int fluid_inside,
+                           const struct sph_stl_open *open, char *msg, size_t msglen) {
   if (m->dim != 3) return geom_fail(msg, msglen, "%s: STL files describe 3D walls", path);
   FILE *f = fopen(path, "rb");
   if (!f) return geom_fail(msg, msglen, "%s: cannot open: %s", path, strerror(errno));
@@ -166,8 +194,16 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
   if (len >= 84)
     count = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 | (uint32_t)buf[82] << 16 |
             (uint32_t)buf[83] << 24;
+  const int nnames = open ? open->n : 0;
+  unsigned char *found = cmn_calloc((size_t)nnames + 1, 1);
   if (len >= 84 && len == 84 + 50 * (size_t)count) {
     if (count == 0) rc = geom_fail(msg, msglen, "%s: binary STL with no triangles", path);
+    if (nnames > 0 && rc == 0)
+      rc = geom_fail(msg, msglen,
+                     "%s: a binary STL file has no solid names: open solids by name need an "
+                     "ASCII file ('solid NAME' ... 'endsolid'); or open the whole file",
+                     path);
+    const uint8_t flags = open && open->all ? SPH_FLAG_OPEN : 0;
     for (uint32_t t = 0; t < count && rc == 0; t++) {
       const unsigned char *r = buf + 84 + 50 * (size_t)t;
       double fn[3], v[3][3];
@@ -179,13 +215,15 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
           rc = geom_fail(msg, msglen, "%s: triangle %lu: non-finite vertex coordinate", path,
                          (unsigned long)t + 1);
       if (rc == 0)
-        rc = add_facet(m, fn, v, scale, fluid_inside, source, (long)t + 1, path, msg, msglen);
+        rc =
+            add_facet(m, fn, v, scale, fluid_inside, flags, source, (long)t + 1, path, msg, msglen);
     }
   } else {
     size_t i = 0;
     while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) i++;
     if (len - i >= 5 && memcmp(buf + i, "solid", 5) == 0)
-      rc = read_ascii(m, (const char *)buf, len, path, scale, fluid_inside, source, msg, msglen);
+      rc = read_ascii(m, (const char *)buf, len, path, scale, fluid_inside, open, found, source,
+                      msg, msglen);
     else if (len >= 84)
       rc = geom_fail(msg, msglen,
                      "%s: not an STL file: neither ASCII (starting with 'solid') nor binary "
@@ -198,6 +236,11 @@ int sph_mesh_read_stl(struct sph_mesh *m, const char *path, double scale, int fl
                      path, len);
   }
   free(buf);
+  for (int k = 0; k < nnames && rc == 0; k++)
+    if (!found[k])
+      rc = geom_fail(msg, msglen, "%s: no solid named '%s' (the name after 'solid')", path,
+                     open->names[k]);
+  free(found);
   if (rc == 0 && m->nvert > v0) sph_mesh_merge_vertices(m, 0.0);
   return rc;
 }

@@ -172,6 +172,7 @@ static int read_poiseuille(struct cmn_case *c, const char *base, int dim, const 
   if (d->shape == SPH_DUCT_PLATES && has_u) d->flux = 4.0 * d->u_max * d->radius / 3.0;
   if (d->shape == SPH_DUCT_CIRCLE && has_u) d->flux = 0.5 * M_PI * d->radius * d->radius * d->u_max;
   TRY(check_speed(c, key(p, sizeof p, base, has_u ? "u_max" : "flux"), sph_open_duct_umax(d), eos));
+  TRY(cmn_case_opt_double(c, key(p, sizeof p, base, "ramp"), 0.0, 0.0, INFINITY, &d->ramp));
   return 0;
 }
 
@@ -435,6 +436,36 @@ static int read_faces(struct cmn_case *c, const char *base, int dim, struct sph_
   return 0;
 }
 
+/* `solids: [name, ...]` of an STL wall (ASCII solids), instead of `edges`; their element ranges
+ * come from the mesh (sph_open_check_mesh). */
+static int read_solids(struct cmn_case *c, const char *base, struct sph_open_group *g) {
+  char p[192], q[224], t[96];
+  key(p, sizeof p, base, "solids");
+  int n = cmn_case_seq_length(c, p);
+  if (n <= 0) return n;
+  if (g->nedges > 0 || g->faces)
+    return cmn_case_fail(c, p, "give one of 'edges', 'faces' and 'solids', not two");
+  const int max = (int)(sizeof g->solids / sizeof g->solids[0]);
+  if (n > max) return cmn_case_fail(c, p, "at most %d solids", max);
+  const char *type;
+  snprintf(t, sizeof t, "geometry.walls[%d].type", g->wall);
+  TRY(cmn_case_get_string(c, t, &type));
+  if (strcmp(type, "stl") != 0)
+    return cmn_case_fail(c, p, "solids select parts of an STL wall; geometry.walls[%d] is a %s",
+                         g->wall, type);
+  for (int i = 0; i < n; i++) {
+    const char *name;
+    snprintf(q, sizeof q, "%s[%d]", p, i);
+    TRY(cmn_case_get_string(c, q, &name));
+    if (strlen(name) == 0 || strlen(name) >= sizeof g->solids[i])
+      return cmn_case_fail(c, q, "expected a solid name of 1 to %zu characters",
+                           sizeof g->solids[i] - 1);
+    snprintf(g->solids[i], sizeof g->solids[i], "%s", name);
+  }
+  g->nsolids = n;
+  return 0;
+}
+
 int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim,
                          const double gravity[3], const struct rmn_eos *eos) {
   memset(oc, 0, sizeof *oc);
@@ -479,6 +510,7 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
     }
     g->nedges = ne;
     TRY(read_faces(c, base, dim, g));
+    TRY(read_solids(c, base, g));
     static const char *const imposes[] = {"pressure", "velocity", NULL};
     int imposed;
     TRY(cmn_case_get_choice(c, key(p, sizeof p, base, "impose"), imposes, &imposed));
@@ -509,6 +541,11 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
                            unsigned flags) {
   if (wall != g->wall) return 0;
   if (g->faces) return on_face(g->faces, n);
+  if (g->nsolids) {
+    for (int k = 0; k < g->nsolids; k++)
+      if (edge >= g->solid_first[k] && edge <= g->solid_last[k]) return 1;
+    return 0;
+  }
   if (g->nedges == 0) return (flags & SPH_FLAG_OPEN) != 0;
   for (int k = 0; k < g->nedges; k++)
     if (g->edges[k] == edge) return 1;
@@ -520,29 +557,46 @@ static int selects(const struct sph_open_group *g, const struct sph_mesh *m, siz
   return sph_open_group_selects(g, m->source[e], m->source_index[e], m->normal[e], m->flags[e]);
 }
 
-int sph_open_check_mesh(const struct sph_open_config *oc, struct cmn_case *c,
+int sph_open_check_mesh(struct sph_open_config *oc, struct cmn_case *c,
                         const struct sph_mesh *walls) {
   const struct sph_mesh *m = walls;
   char p[192];
   for (int i = 0; i < oc->ngroups; i++) {
-    const struct sph_open_group *g = &oc->group[i];
+    struct sph_open_group *g = &oc->group[i];
+    /* solids by name: their element ranges in the STL file */
+    for (int k = 0; k < g->nsolids; k++) {
+      int found = -1;
+      for (int q = 0; q < m->nparts && found < 0; q++)
+        if (m->parts[q].source == g->wall && strcmp(m->parts[q].name, g->solids[k]) == 0) found = q;
+      if (found < 0) {
+        char list[512] = "";
+        for (int q = 0; q < m->nparts; q++)
+          if (m->parts[q].source == g->wall &&
+              strlen(list) + strlen(m->parts[q].name) + 8 < sizeof list)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s'%s'", list[0] ? ", " : "",
+                     m->parts[q].name);
+        snprintf(p, sizeof p, "open_boundaries[%d].solids[%d]", i, k);
+        return cmn_case_fail(c, p, "geometry.walls[%d] has no solid named '%s' (its solids: %s)",
+                             g->wall, g->solids[k], list[0] ? list : "none");
+      }
+      g->solid_first[k] = m->parts[found].first;
+      g->solid_last[k] = m->parts[found].last;
+    }
     size_t count = 0;
     for (size_t e = 0; e < m->nelem; e++) count += (size_t)selects(g, m, e);
-    if (g->faces) {
+    if (g->faces || g->nsolids) { /* faces of a box, or named solids of an STL file */
+      const char *what = g->faces ? "face" : "solid", *list = g->faces ? "open" : "open_solids";
+      snprintf(p, sizeof p, "open_boundaries[%d].%ss", i, what);
       for (size_t e = 0; e < m->nelem; e++)
-        if (selects(g, m, e) && !(m->flags[e] & SPH_FLAG_OPEN)) {
-          snprintf(p, sizeof p, "open_boundaries[%d].faces", i);
+        if (selects(g, m, e) && !(m->flags[e] & SPH_FLAG_OPEN))
           return cmn_case_fail(c, p,
-                               "a selected face of geometry.walls[%d] is a wall, not open (list "
-                               "it in the wall's 'open')",
-                               g->wall);
-        }
-      if (count == 0) {
-        snprintf(p, sizeof p, "open_boundaries[%d].faces", i);
+                               "a selected %s of geometry.walls[%d] is a wall, not open (list it "
+                               "in the wall's '%s')",
+                               what, g->wall, list);
+      if (count == 0)
         return cmn_case_fail(c, p, "selects no element of geometry.walls[%d]", g->wall);
-      }
     }
-    if (g->nedges == 0 && !g->faces && count == 0) {
+    if (g->nedges == 0 && !g->faces && !g->nsolids && count == 0) {
       snprintf(p, sizeof p, "open_boundaries[%d].wall", i);
       return cmn_case_fail(c, p,
                            "geometry.walls[%d] has no open element (flag faces or edges with "

@@ -232,14 +232,17 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
   if (!op) return 0;
   struct sph_system *s = &sv->sys;
   struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
-  const double m = op->particle_mass;
   /* the centre of the layer of fluid that has entered in front of the vertex: beyond the wall
    * layer (φΔr thick, the vertex's own mass) by half a spacing */
   const double offset = (sv->vertex_phi + 0.5) * s->dr;
   size_t count = 0;
   for (size_t i = 0; i < v->n; i++) {
     const int g = op->vert_group[i];
-    if (g < 0 || (v->flags[i] & SPH_FLAG_CORNER) || !(v->mass[i] - op->mass_base[i] >= m)) continue;
+    if (g < 0 || (v->flags[i] & SPH_FLAG_CORNER)) continue;
+    /* a volume Δr^d of the fluid that entered, at the density the boundary problem gave it (ρ0
+     * for a vertex never solved, which has no flux either) */
+    const double m = (v->rho[i] > 0.0 ? v->rho[i] : sv->cfg.rho0) * op->cell_volume;
+    if (!(v->mass[i] - op->mass_base[i] >= m)) continue;
     const double *n = op->pts[g].normal[op->vert_point[i]];
     const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
     struct sph_parts *f = &s->part[SPH_KIND_FLUID];

@@ -171,7 +171,7 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
   op->mass0 = cmn_calloc(v->n + 1, sizeof *op->mass0);
   for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
   op->mass_base = cmn_calloc(v->n + 1, sizeof *op->mass_base); /* sph_open_mass_base() */
-  op->particle_mass = sv->cfg.rho0 * pow(sv->sys.dr, dim);
+  op->cell_volume = pow(sv->sys.dr, dim);
   for (size_t i = 0, q = 0; i < v->n; i++)
     if (op->vert_group[i] >= 0) {
       for (int c = 0; c < 3; c++) op->wall_v[q][c] = v->v[c][i];

@@ -143,17 +143,26 @@ void sph_open_source_free(struct sph_open_source *src) {
   memset(src, 0, sizeof *src);
 }
 
-/* Centre-line speed times the profile at x (the duct's coordinates in the plane normal to n). */
-static double poiseuille_speed(const struct sph_open_source *src, const double x[3],
+/* The start-up factor s²(3 − 2s), s = t/T clamped to [0, 1] (1 without a ramp). */
+static double ramp_factor(double ramp, double t) {
+  if (!(ramp > 0.0)) return 1.0;
+  const double s = fmin(fmax(t / ramp, 0.0), 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+/* Centre-line speed times the profile at x (the duct's coordinates in the plane normal to n),
+ * times the start-up ramp at t. */
+static double poiseuille_speed(const struct sph_open_source *src, double t, const double x[3],
                                const double n[3]) {
   const struct sph_open_poiseuille *d = &src->group->poiseuille;
+  const double f = ramp_factor(d->ramp, t);
   double r[3];
   for (int k = 0; k < 3; k++) r[k] = x[k] - d->center[k];
   const double rn = dot3(r, n);
   for (int k = 0; k < 3; k++) r[k] -= rn * n[k]; /* in the boundary's plane */
   if (d->shape != SPH_DUCT_RECTANGLE) {
     const double q = dot3(r, r) / (d->radius * d->radius);
-    return q < 1.0 ? d->u_max * (1.0 - q) : 0.0;
+    return q < 1.0 ? f * d->u_max * (1.0 - q) : 0.0;
   }
   /* axis: the side of half-width half[0], made normal to n; the other side along n × axis */
   double e1[3], e2[3];
@@ -164,7 +173,7 @@ static double poiseuille_speed(const struct sph_open_source *src, const double x
   e2[0] = n[1] * e1[2] - n[2] * e1[1];
   e2[1] = n[2] * e1[0] - n[0] * e1[2];
   e2[2] = n[0] * e1[1] - n[1] * e1[0];
-  return src->duct_scale * duct_f(d->half[0], d->half[1], dot3(r, e1), dot3(r, e2));
+  return f * src->duct_scale * duct_f(d->half[0], d->half[1], dot3(r, e1), dot3(r, e2));
 }
 
 /* A wave at x: velocity (global) and gauge pressure, at the point's height clamped to
@@ -216,7 +225,7 @@ void sph_open_source_eval(const struct sph_open_source *src, double t, const dou
       break;
     }
     case SPH_OPEN_POISEUILLE:
-      scalar = poiseuille_speed(src, x, n);
+      scalar = poiseuille_speed(src, t, x, n);
       break;
     case SPH_OPEN_STOKES5:
     case SPH_OPEN_SOLITARY:

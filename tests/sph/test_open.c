@@ -1090,14 +1090,30 @@ static void test_stl_solids(void **state) {
   fixture_solver_destroy(sv[1]);
   /* a group naming a solid the file does not have (the key, the wall and the file's solids), and
    * one selecting a solid that is not open */
-  const char *bad[2][3] = {{"solids: [nozzle]", "open_boundaries[1].solids[0]",
+  /* the same tank with its walls written as two solids that share the name 'walls' */
+  static char stl2[16384];
+  snprintf(stl2, sizeof stl2, "solid walls\n");
+  for (int k = 0; k < 4; k++) {
+    if (k == 2)
+      snprintf(stl2 + strlen(stl2), sizeof stl2 - strlen(stl2), "endsolid\nsolid walls\n");
+    stl_quad(stl2, sizeof stl2, walls[k]);
+  }
+  snprintf(stl2 + strlen(stl2), sizeof stl2 - strlen(stl2), "endsolid\n%s",
+           strstr(stl, "solid inlet"));
+  char wall_stl2[600];
+  snprintf(wall_stl2, sizeof wall_stl2, "{type: stl, file: '%s', open_solids: [inlet, outlet]}",
+           write_file("tank2.stl", stl2));
+  const char *bad[3][4] = {{wall_stl, "solids: [nozzle]", "open_boundaries[1].solids[0]",
                             "geometry.walls[0] has no solid named 'nozzle' (its solids: 'walls', "
                             "'inlet', 'outlet')"},
-                           {"solids: [walls]", "open_boundaries[1].solids",
+                           {wall_stl, "solids: [walls]", "open_boundaries[1].solids",
                             "a selected solid of geometry.walls[0] is a wall, not open (list it "
-                            "in the wall's 'open_solids')"}};
-  for (int k = 0; k < 2; k++) {
-    snprintf(text[0], sizeof text[0], tmpl, wall_stl, "solids: [inlet]", bad[k][0]);
+                            "in the wall's 'open_solids')"},
+                           {wall_stl2, "solids: [walls]", "open_boundaries[1].solids[0]",
+                            "2 solids of geometry.walls[0] are called 'walls': selecting by name "
+                            "needs unique names"}};
+  for (int k = 0; k < 3; k++) {
+    snprintf(text[0], sizeof text[0], tmpl, bad[k][0], "solids: [inlet]", bad[k][1]);
     char err[512];
     struct cmn_case *c = cmn_case_parse(text[0], "case.yaml", err, sizeof err);
     assert_non_null(c);
@@ -1109,8 +1125,8 @@ static void test_stl_solids(void **state) {
     assert_int_equal(sph_open_check_mesh(&cfg->open, c, &g.walls), -1);
     const char *e = cmn_case_error(c);
     print_message("%s\n", e);
-    assert_non_null(strstr(e, bad[k][1]));
     assert_non_null(strstr(e, bad[k][2]));
+    assert_non_null(strstr(e, bad[k][3]));
     free(cfg);
     sph_geometry_free(&g);
     cmn_case_free(c);

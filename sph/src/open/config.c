@@ -565,9 +565,19 @@ int sph_open_check_mesh(struct sph_open_config *oc, struct cmn_case *c,
     struct sph_open_group *g = &oc->group[i];
     /* solids by name: their element ranges in the STL file */
     for (int k = 0; k < g->nsolids; k++) {
-      int found = -1;
-      for (int q = 0; q < m->nparts && found < 0; q++)
-        if (m->parts[q].source == g->wall && strcmp(m->parts[q].name, g->solids[k]) == 0) found = q;
+      int found = -1, times = 0;
+      for (int q = 0; q < m->nparts; q++)
+        if (m->parts[q].source == g->wall && strcmp(m->parts[q].name, g->solids[k]) == 0) {
+          if (found < 0) found = q;
+          times++;
+        }
+      if (times > 1) {
+        snprintf(p, sizeof p, "open_boundaries[%d].solids[%d]", i, k);
+        return cmn_case_fail(c, p,
+                             "%d solids of geometry.walls[%d] are called '%s': selecting by name "
+                             "needs unique names",
+                             times, g->wall, g->solids[k]);
+      }
       if (found < 0) {
         char list[512] = "";
         for (int q = 0; q < m->nparts; q++)

@@ -175,6 +175,18 @@ static void test_stl_errors(void **state) {
   sph_mesh_free(&c);
 }
 
+/* Reading `path` with the one open solid name[0] fails with a message containing `want`. */
+static void expect_open_error(const char *path, const char **name, const char *want) {
+  const struct sph_stl_open open = {0, 1, name};
+  struct sph_mesh m;
+  sph_mesh_init(&m, 3);
+  char msg[1024] = "";
+  assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), -1);
+  if (!strstr(msg, want)) print_error("message: '%s', wanted '%s'\n", msg, want);
+  assert_non_null(strstr(msg, want));
+  sph_mesh_free(&m);
+}
+
 /* Open solids of an ASCII STL: the tetrahedron written as two solids, 'base' (three facets) and
  * 'lid' (one); open_solids flags the named ones, the parts record their element ranges (kept by
  * refinement), and unknown names or names with a binary file are errors. */
@@ -215,23 +227,14 @@ static void test_stl_open_solids(void **state) {
   assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), 0);
   for (size_t e = 0; e < m.nelem; e++) assert_int_equal(m.flags[e], SPH_FLAG_OPEN);
   sph_mesh_free(&m);
-  /* a name the file does not have */
-  open = (struct sph_stl_open){0, 1, none};
-  sph_mesh_init(&m, 3);
-  assert_int_equal(sph_mesh_read_stl_open(&m, path, 1.0, 1, &open, msg, sizeof msg), -1);
-  assert_non_null(strstr(msg, "two.stl: no solid named 'top'"));
-  sph_mesh_free(&m);
-  /* names with a binary file */
+  /* a name the file does not have; names with a binary file */
+  expect_open_error(path, none, "two.stl: no solid named 'top'");
   struct sph_mesh c;
   cube(&c);
   const char *bin = test_path("cube_open.stl");
   assert_int_equal(sph_mesh_write_stl(&c, bin, 1), 0);
   sph_mesh_free(&c);
-  open = (struct sph_stl_open){0, 1, lid};
-  sph_mesh_init(&m, 3);
-  assert_int_equal(sph_mesh_read_stl_open(&m, bin, 1.0, 1, &open, msg, sizeof msg), -1);
-  assert_non_null(strstr(msg, "a binary STL file has no solid names"));
-  sph_mesh_free(&m);
+  expect_open_error(bin, lid, "a binary STL file has no solid names");
 }
 
 static void test_refine_3d(void **state) {

@@ -218,7 +218,8 @@ double sph_element_distance(int dim, const double v[3][3], const double *a, doub
 struct sph_mesh_part {
   int source;       /**< index into sources[] */
   long first, last; /**< element numbers (source_index) of the part, inclusive */
-  char name[64];    /**< the solid's name (truncated to 63 bytes) */
+  char name[256];   /**< the solid's name (the reader keeps 255 bytes: no longer name can match a
+                         shorter one by its prefix) */
 };
 
 struct sph_mesh {

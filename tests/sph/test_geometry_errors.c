@@ -127,9 +127,11 @@ static void test_case_errors(void **state) {
              "endloop\nendfacet\nendsolid t\n");
   expect(HEAD3 "  walls:\n    - {type: stl, file: open.stl}\n", "the surface is open");
   expect(HEAD3 "  walls:\n    - {type: stl, file: open.stl}\n", "open.stl: triangle ");
-  /* Open solids: a name the file lacks, and both ways of opening at once. */
+  /* Open solids: a name the file lacks, a name given twice, and both ways of opening at once. */
   expect(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl, open_solids: [inlet]}\n",
          "tetra.stl: no solid named 'inlet'");
+  expect(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl, open_solids: [t, t]}\n",
+         "geometry.walls[0].open_solids[1]: solid 't' is named twice (entries 0 and 1)");
   expect(HEAD3 "  walls:\n    - {type: stl, file: tetra.stl, open: true, open_solids: [t]}\n",
          "geometry.walls[0].open_solids: give 'open: true' (the whole file) or 'open_solids'");
 }

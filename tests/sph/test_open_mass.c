@@ -51,19 +51,26 @@ static double total_mass(const struct sph_solver *sv) {
 }
 
 /* ṁ_v by hand from the store's solved segment values (the last evaluation): half of ρ_s |s| u_n,s
- * of each wet open segment of the vertex (a corner takes none). */
+ * of the wet part of each open segment of a wet vertex, all of it when the segment's other vertex
+ * is dry (above the surface); a corner takes none, and its half goes to no vertex. */
 static double mdot_hand(const struct sph_solver *sv, size_t iv) {
   const struct sph_open *op = sv->open;
   const struct sph_parts *sg = &sv->sys.part[SPH_KIND_SEGMENT];
+  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
   double sum = 0.0;
   for (size_t j = 0; j < sg->n; j++) {
     if (op->seg_group[j] < 0 || (sg->vertex[0][j] != iv && sg->vertex[1][j] != iv)) continue;
     const struct sph_open_points *pt = &op->pts[op->seg_group[j]];
-    if (pt->slot[op->seg_point[j]] == (size_t)-1) continue; /* dry: no flux */
-    const double un = -sg->v[0][j];                         /* the face x+: n = (−1, 0) */
-    const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+    const size_t k = (size_t)op->seg_point[j];
+    if (pt->slot[k] == (size_t)-1) continue; /* dry: no flux */
     if (v->flags[iv] & SPH_FLAG_CORNER) continue;
-    sum += 0.5 * sg->rho[j] * sg->measure[j] * un; /* a corner's half goes to no vertex */
+    if (!(pt->wet[op->vert_point[iv]] > 0.0)) continue; /* above the surface: nothing */
+    const size_t other = sg->vertex[0][j] == iv ? sg->vertex[1][j] : sg->vertex[0][j];
+    const int other_dry = !(v->flags[other] & SPH_FLAG_CORNER) &&
+                          !(op->pts[op->vert_group[other]].wet[op->vert_point[other]] > 0.0);
+    const double un = -sg->v[0][j]; /* the face x+: n = (−1, 0) */
+    /* the segment's wet part only (test_open checks the fractions) */
+    sum += (other_dry ? 1.0 : 0.5) * sg->rho[j] * sg->measure[j] * pt->wet[k] * un;
   }
   return sum;
 }

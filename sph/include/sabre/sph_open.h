@@ -221,7 +221,8 @@ struct sph_open_stats {
                              the fluid) [kg/s; 2D per unit depth] */
   double level;         /**< measured free-surface level (hydrostatic, measured), else NaN [m] */
   long nwave[3];        /**< segments per wave type (enum rmn_wave: contact, expansion, shock) */
-  long ndry;            /**< segments without fluid within 2h (not solved; they keep wall values) */
+  long ndry;            /**< segments not solved (no fluid within 2h, or above the local free
+                             surface: wet fraction 0); they keep wall values */
 };
 
 /** One group's points: its segments, then its vertices. Arrays of npoints (owned). */
@@ -234,6 +235,9 @@ struct sph_open_points {
   long *element;       /**< segment: element number within its wall (0 unknown); vertex: -1 */
   /* the last evaluation */
   double *alpha;      /**< Shepard sum Σ_b V_b w_b, J(34) [-] */
+  double *wet;        /**< wet fraction: 1 below the local free surface (and without gravity),
+                            a segment's submerged part of its vertical extent when it
+                            straddles it, 0 dry (docs/sph-solver.md §10) [-] */
   double *p_int;      /**< interior pressure, J(33) with numerics.vertex_hydrostatic [Pa] */
   double (*u_int)[3]; /**< interior velocity, J(35) [m/s] */
   struct sph_open_value *value;    /**< imposed data */

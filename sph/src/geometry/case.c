@@ -247,6 +247,9 @@ static void read_wall(struct cmn_case *c, int i, int dim, double dr, const int *
           char q[300];
           snprintf(q, sizeof q, "%s[%d]", p, k);
           cmn_case_get_string(c, q, &names[k]);
+          for (int l = 0; l < k; l++)
+            if (strcmp(names[l], names[k]) == 0)
+              cmn_case_fail(c, q, "solid '%s' is named twice (entries %d and %d)", names[k], l, k);
         }
         if (op.all && nn > 0)
           cmn_case_fail(c, p,

@@ -190,17 +190,28 @@ long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *s
   return jmin >= 0 && op->seg_group[jmin] >= 0 ? jmin : -1; /* behind a wall: not an exit */
 }
 
-double sph_open_share_flux(const struct sph_system *s, size_t j, double q, double *acc) {
+double sph_open_share_flux(const struct sph_system *s, const struct sph_open *op, size_t j,
+                           double q, double *acc) {
   const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
-  const double share = q / s->dim;
-  int n = 0;
+  /* a d-th to each vertex that is not a corner; a dry vertex's share (a segment straddling the
+   * free surface) to its wet vertices that are not corners */
+  int nfree = 0, nwet = 0;
   for (int d = 0; d < s->dim; d++) {
     const size_t iv = sg->vertex[d][j];
     if (v->flags[iv] & SPH_FLAG_CORNER) continue;
-    acc[iv] += share;
-    n++;
+    nfree++;
+    nwet += op->pts[op->vert_group[iv]].wet[op->vert_point[iv]] > 0.0;
   }
-  return n * share;
+  if (nwet == 0) return 0.0;
+  const double share = nwet == nfree ? q / s->dim : q * nfree / (s->dim * nwet);
+  for (int d = 0; d < s->dim; d++) {
+    const size_t iv = sg->vertex[d][j];
+    if ((v->flags[iv] & SPH_FLAG_CORNER) ||
+        !(op->pts[op->vert_group[iv]].wet[op->vert_point[iv]] > 0.0))
+      continue;
+    acc[iv] += share;
+  }
+  return nwet * share;
 }
 
 size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {

@@ -37,6 +37,7 @@ static int fail_create(int *failed, char *msg, size_t msglen, struct sph_open *o
  * Σ V_b w p_b and Σ V_b w v_b. */
 struct shepard {
   double alpha, p, p_raw, u[3];
+  double ztop; /* the highest of the fluid particles summed, along −g [m] */
 };
 
 /* Does group g select segment j? */
@@ -110,6 +111,7 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
     pt->measure = cmn_calloc(n, sizeof *pt->measure);
     pt->element = cmn_malloc(n * sizeof *pt->element);
     pt->alpha = cmn_calloc(n, sizeof *pt->alpha);
+    pt->wet = cmn_calloc(n, sizeof *pt->wet);
     pt->p_int = cmn_calloc(n, sizeof *pt->p_int);
     pt->u_int = cmn_calloc(n, sizeof *pt->u_int);
     pt->value = cmn_calloc(n, sizeof *pt->value);
@@ -198,6 +200,7 @@ void sph_open_free(struct sph_open *op) {
     free(pt->alpha);
     free(pt->p_int);
     free(pt->u_int);
+    free(pt->wet);
     free(pt->value);
     free(pt->in);
     free(pt->out);
@@ -231,8 +234,10 @@ void sph_open_restore_walls(struct sph_open *op, struct sph_solver *sv) {
 
 static void shepard_add(struct shepard *sh, const struct sph_parts *f, size_t b,
                         const struct sph_pair *pr, int hydro, const double *gravity,
-                        const double *n) {
+                        const double *up, const double *n) {
   const double vw = f->mass[b] / f->rho[b] * pr->w;
+  const double z = dot3((const double[3]){f->x[0][b], f->x[1][b], f->x[2][b]}, up);
+  if (z > sh->ztop) sh->ztop = z;
   double pb = f->p[b];
   if (hydro != SPH_VHYDRO_NONE) {
     double r[3] = {pr->r[0], pr->r[1], pr->r[2]}; /* r_point − r_b */
@@ -257,6 +262,29 @@ static const char *imposed_text(const struct sph_open_group *g, const struct sph
     snprintf(buf, len, "imposed normal velocity %.9g m/s (velocity (%.6g, %.6g, %.6g) m/s)",
              val->un, val->u[0], val->u[1], val->u[2]);
   return buf;
+}
+
+/* The wet fraction of an open point whose Shepard sum has fluid (docs/sph-solver.md §10): with
+ * gravity, the local free surface is Δr/2 above the highest fluid particle of the sum (as the
+ * initial free surface and the measured depth); a vertex is wet at or below it, a segment by the
+ * part of its vertical extent below it (its vertices' heights along −g). Without gravity every
+ * such point is wet. */
+static double wet_fraction(const struct sph_system *s, int is_seg, size_t i, double ztop,
+                           const double *up) {
+  if (up[0] == 0.0 && up[1] == 0.0 && up[2] == 0.0) return 1.0;
+  const double level = ztop + 0.5 * s->dr;
+  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
+  if (!is_seg) return dot3((const double[3]){v->x[0][i], v->x[1][i], v->x[2][i]}, up) <= level;
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
+  double lo = INFINITY, hi = -INFINITY;
+  for (int d = 0; d < s->dim; d++) {
+    const size_t iv = sg->vertex[d][i];
+    const double z = dot3((const double[3]){v->x[0][iv], v->x[1][iv], v->x[2][iv]}, up);
+    lo = fmin(lo, z);
+    hi = fmax(hi, z);
+  }
+  if (hi - lo <= 1e-9 * s->dr) return level >= lo;
+  return fmin(fmax((level - lo) / (hi - lo), 0.0), 1.0);
 }
 
 void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double t) {
@@ -285,6 +313,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
   for (int g = 0; g < ng; g++) ntot += op->pts[g].npoints;
   struct shepard *sh = (struct shepard *)op->work;
   memset(sh, 0, ntot * sizeof *sh);
+  for (size_t k = 0; k < ntot; k++) sh[k].ztop = -INFINITY;
   size_t base[SPH_MAX_OPEN_GROUPS + 1];
   base[0] = 0;
   for (int g = 0; g < ng; g++) base[g + 1] = base[g] + op->pts[g].npoints;
@@ -296,9 +325,8 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       struct sph_pair pr;
       if (!sph_pair_eval(kernel, s, sg, j, f, a, &pr)) continue;
       const size_t k = (size_t)op->seg_point[j];
-      shepard_add(&sh[base[g] + k], f, a, &pr, hydro, gravity, op->pts[g].normal[k]);
-      const double z = dot3((const double[3]){f->x[0][a], f->x[1][a], f->x[2][a]}, up);
-      if (z > level[g]) level[g] = z;
+      shepard_add(&sh[base[g] + k], f, a, &pr, hydro, gravity, up, op->pts[g].normal[k]);
+      if (sh[base[g] + k].ztop > level[g]) level[g] = sh[base[g] + k].ztop;
     }
   for (int g = 0; g < ng; g++) {
     const struct sph_open_points *pt = &op->pts[g];
@@ -308,7 +336,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
         struct sph_pair pr;
         const size_t b = vf->index[q];
         if (sph_pair_eval(kernel, s, v, iv, f, b, &pr))
-          shepard_add(&sh[base[g] + k], f, b, &pr, hydro, gravity, pt->normal[k]);
+          shepard_add(&sh[base[g] + k], f, b, &pr, hydro, gravity, up, pt->normal[k]);
       }
     }
   }
@@ -317,6 +345,16 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     const int measured = sv->cfg.open.group[g].depth_measured;
     level[g] = measured && isfinite(level[g]) ? level[g] + 0.5 * s->dr : NAN;
     op->stats[g].level = level[g];
+  }
+
+  /* wet fractions of every group first: a segment's flux goes to its wet vertices, which may
+   * belong to another group */
+  for (int g = 0; g < ng; g++) {
+    struct sph_open_points *pt = &op->pts[g];
+    for (size_t k = 0; k < pt->npoints; k++) {
+      const struct shepard *h = &sh[base[g] + k];
+      pt->wet[k] = h->alpha > 0.0 ? wet_fraction(s, k < pt->nseg, pt->index[k], h->ztop, up) : 0.0;
+    }
   }
 
   for (int g = 0; g < ng; g++) {
@@ -331,7 +369,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       const struct shepard *h = &sh[base[g] + k];
       pt->alpha[k] = h->alpha;
       pt->slot[k] = (size_t)-1;
-      if (!(h->alpha > 0.0)) {
+      if (!(pt->wet[k] > 0.0)) {
         pt->p_int[k] = NAN;
         for (int c = 0; c < 3; c++) pt->u_int[k][c] = NAN;
         continue;
@@ -410,7 +448,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       for (int c = 0; c < 3; c++) pk->v[c][i] = c < dim ? r->u[c] : 0.0;
       sv->mu[is_seg ? SPH_KIND_SEGMENT : SPH_KIND_VERTEX][i] = nu * r->rho;
       if (!is_seg) continue;
-      const double w = pt->measure[k];
+      const double w = pt->measure[k] * pt->wet[k];
       stt->nwave[r->wave]++;
       m += w;
       s_imp += w * (grp->imposed == RMN_IMPOSE_PRESSURE ? pt->value[k].p : pt->value[k].un);
@@ -418,10 +456,11 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       s_un += w * r->un;
       s_pi += w * pt->p_int[k];
       s_ui += w * dot3(pt->u_int[k], pt->normal[k]);
-      /* J(15): the segment's mass flux ρ_s |s| (u_s − v_s)·n_s (fixed boundary: v_s = 0), a d-th
-       * to each of its vertices that is not a corner (docs/sph-solver.md §10) */
+      /* J(15): the mass flux ρ_s |s| (u_s − v_s)·n_s of the segment's wet part (fixed boundary:
+       * v_s = 0), a d-th to each of its vertices that is not a corner, a dry vertex's share to
+       * the wet ones (docs/sph-solver.md §10) */
       const double q = r->rho * w * r->un;
-      const double qv = sph_open_share_flux(s, i, q, op->mdot);
+      const double qv = sph_open_share_flux(s, op, i, q, op->mdot);
       mflux += qv;
       flux += qv / r->rho;
     }

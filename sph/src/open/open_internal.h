@@ -17,8 +17,12 @@ void sph_open_share(const struct sph_system *s, size_t j, const double x[3], dou
 /** Add the mass flux q [kg/s] through open segment j to the rates of its vertices, J(15): q/d to
  *  each vertex that is not a corner; a corner's share is the flux through the part of the
  *  segment next to the wall, whose fluid the wall's vertex layer stands for, and goes to no
- *  vertex (nothing of a segment whose vertices are all corners). Returns the flux given to the
- *  vertices, the segment's share of the boundary's mass flux (docs/sph-solver.md §10). */
-double sph_open_share_flux(const struct sph_system *s, size_t j, double q, double *acc);
+ *  vertex (nothing of a segment whose vertices are all corners). A dry vertex's share (wet
+ *  fraction 0 in op: above the free surface) goes to the segment's wet vertices that are not
+ *  corners, so that the fluid enters below the surface; with none, nothing. Returns the flux
+ *  given to the vertices, the segment's share of the boundary's mass flux
+ *  (docs/sph-solver.md §10). */
+double sph_open_share_flux(const struct sph_system *s, const struct sph_open *op, size_t j,
+                           double q, double *acc);
 
 #endif

@@ -3,6 +3,8 @@
 #ifndef SABRE_SPH_BENCH_COMMON_H
 #define SABRE_SPH_BENCH_COMMON_H
 
+#include <stdlib.h>
+
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "sabre/sph_solver.h"
@@ -18,9 +20,10 @@ static inline void bench_set_threads(int n) {
 #endif
 }
 
-/* The solver of a case given as YAML text; name is the case file's path (file names in the case
- * are relative to its directory). Stops the program on a bad case. Free with sph_solver_free()
- * and free(). */
+/* The solver of a case given as YAML text, its force and open-boundary groups resolved against
+ * the mesh as `sabre-sph run` does; name is the case file's path (file names in the case are
+ * relative to its directory). Stops the program on a bad case. Free with sph_solver_free() and
+ * free(). */
 static inline struct sph_solver *bench_solver(const char *yaml, const char *name) {
   char err[1024];
   struct cmn_case *c = cmn_case_parse(yaml, name, err, sizeof err);
@@ -29,11 +32,18 @@ static inline struct sph_solver *bench_solver(const char *yaml, const char *name
   sph_geometry_read(&g, c);
   struct sph_config cfg;
   sph_config_read(&cfg, c, g.dim);
+  sph_open_check_mesh(&cfg.open, c, &g.walls);
   cmn_case_check_unused(c);
   struct sph_system s;
   sph_system_from_geometry(&s, &g);
+  const struct sph_mesh *m = &g.walls;
+  int *wall = cmn_malloc((m->nelem + 1) * sizeof *wall);
+  long *edge = cmn_malloc((m->nelem + 1) * sizeof *edge);
+  for (size_t e = 0; e < m->nelem; e++) wall[e] = m->source[e], edge[e] = m->source_index[e];
   struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  sph_solver_init(sv, &cfg, &s, NULL, NULL);
+  sph_solver_init(sv, &cfg, &s, wall, edge);
+  free(wall);
+  free(edge);
   sph_system_free(&s);
   sph_geometry_free(&g);
   cmn_case_free(c);

@@ -1,5 +1,6 @@
 /* Throughput of the whole solver step (lists, γ, boundary values, forces, predictor–corrector)
- * on a small 2D and a small 3D dam break, through the solver API, with 1 and 2 threads:
+ * on a small 2D and a small 3D dam break, and a 2D channel with walls only or with an inlet and
+ * an outlet (the cost of the open boundaries), through the solver API, with 1 and 2 threads:
  *
  *   particle-steps/s            = fluid particles × steps / wall seconds
  *   fluid–fluid interactions/s  = Σ over the steps of the ordered fluid–fluid pairs closer than
@@ -57,6 +58,25 @@ static const char case_3d[] =
     "initial: {pressure: hydrostatic}\n"
     "time: {end: 10}\n";
 
+/* 2D channel, 2 m × 0.4 m full of fluid (100 × 20 particles, Δr = 0.02 m, no gravity), flowing at
+ * 0.2 m/s: closed (walls only, the fluid starts with the velocity and slides along the walls) and
+ * open (the same box with a velocity inlet at x = 0 and an outlet at 0 Pa at x = 2 m: the boundary
+ * problems, vertex masses, creation and deletion on top of the same particles and walls). */
+static const char case_channel[] =
+    "geometry:\n"
+    "  dimension: 2\n"
+    "  dr: 0.02\n"
+    "  h_over_dr: 2\n"
+    "  first_row: 1\n"
+    "  walls:\n"
+    "    - {type: box, lo: [0, 0], hi: [2, 0.4]%s}\n"
+    "  fluid:\n"
+    "    - {type: box, lo: [0, 0], hi: [2, 0.4]}\n"
+    "fluid: {rho0: 1000, c0: 20}\n"
+    "initial: {velocity: [0.2, 0]}\n"
+    "time: {end: 10}\n"
+    "%s";
+
 /* Ordered fluid–fluid pairs closer than 2h, from the step's neighbour list (radius 2h + skin). */
 static double count_pairs(const struct sph_solver *sv) {
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
@@ -96,7 +116,7 @@ static void run(const struct bench_case *bc, int threads) {
     }
     pairs += count_pairs(sv); /* pairs at the end of the step (the list still holds them) */
   }
-  printf("| %-12s | %7d | %15zu | %5ld | %6.2f | %16.3e | %26.3e |\n", bc->name, threads, nfluid,
+  printf("| %-17s | %7d | %15zu | %5ld | %6.2f | %16.3e | %26.3e |\n", bc->name, threads, nfluid,
          steps, wall, (double)nfluid * (double)steps / wall, pairs / wall);
   fflush(stdout);
   sph_solver_free(sv);
@@ -104,14 +124,24 @@ static void run(const struct bench_case *bc, int threads) {
 }
 
 int main(void) {
+  char closed[2048], open[2048];
+  snprintf(closed, sizeof closed, case_channel, "", "");
+  snprintf(open, sizeof open, case_channel, ", open: [x-, x+]",
+           "open_boundaries:\n"
+           "  - {name: inlet, wall: 0, faces: [x-], impose: velocity, normal_velocity: 0.2}\n"
+           "  - {name: outlet, wall: 0, faces: [x+], impose: pressure, pressure: 0}\n");
   const struct bench_case cases[] = {
       {"2D dam break", case_2d, 200},
       {"3D dam break", case_3d, 20},
+      {"2D channel, walls", closed, 200},
+      {"2D channel, open", open, 200},
   };
   const int threads[] = {1, 2};
-  printf("bench-sph: solver steps of a small dam break (t from 0; fixed step counts)\n");
   printf(
-      "| case         | threads | fluid particles | steps | wall s | particle-steps/s | "
+      "bench-sph: solver steps of a small dam break and of a channel closed or open (t from 0; "
+      "fixed step counts)\n");
+  printf(
+      "| case              | threads | fluid particles | steps | wall s | particle-steps/s | "
       "fluid-fluid interactions/s |\n");
   printf("|---|---|---|---|---|---|---|\n");
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)

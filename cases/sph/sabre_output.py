@@ -104,6 +104,15 @@ def read_pvd(path, part=None):
     return found
 
 
+def time_mean(t, y, t0):
+    """Mean of the CSV column y over the rows with t >= t0, each row weighted by the time step
+    that ended at it (rows are diagnostics rows, whose steps vary); nan when no row is that late.
+    t and y are numpy arrays (read_csv's default)."""
+    import numpy as np
+    w = np.diff(t, prepend=t[0]) * (t >= t0)
+    return float(np.sum(w * y) / np.sum(w)) if np.sum(w) > 0 else float("nan")
+
+
 def used_dr(run_dir):
     """geometry.dr of a run, read from its used_case.yaml (so that the scripts also serve
     --set geometry.dr=...)."""

@@ -3,8 +3,6 @@
 #ifndef SABRE_SPH_BENCH_COMMON_H
 #define SABRE_SPH_BENCH_COMMON_H
 
-#include <stdlib.h>
-
 #include "sabre/common.h"
 #include "sabre/sph.h"
 #include "sabre/sph_solver.h"
@@ -36,14 +34,9 @@ static inline struct sph_solver *bench_solver(const char *yaml, const char *name
   cmn_case_check_unused(c);
   struct sph_system s;
   sph_system_from_geometry(&s, &g);
-  const struct sph_mesh *m = &g.walls;
-  int *wall = cmn_malloc((m->nelem + 1) * sizeof *wall);
-  long *edge = cmn_malloc((m->nelem + 1) * sizeof *edge);
-  for (size_t e = 0; e < m->nelem; e++) wall[e] = m->source[e], edge[e] = m->source_index[e];
   struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  sph_solver_init(sv, &cfg, &s, wall, edge);
-  free(wall);
-  free(edge);
+  /* segment j is mesh element j: the mesh's own wall index and element number of each */
+  sph_solver_init(sv, &cfg, &s, g.walls.source, g.walls.source_index);
   sph_system_free(&s);
   sph_geometry_free(&g);
   cmn_case_free(c);

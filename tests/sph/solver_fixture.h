@@ -61,14 +61,9 @@ static inline struct sph_solver *fixture_solver_from_case(const char *text) {
   cmn_case_check_unused(c);
   struct sph_system s;
   sph_system_from_geometry(&s, &g);
-  const struct sph_mesh *m = &g.walls;
-  int *wall = calloc(m->nelem + 1, sizeof *wall);
-  long *edge = calloc(m->nelem + 1, sizeof *edge);
-  for (size_t e = 0; e < m->nelem; e++) wall[e] = m->source[e], edge[e] = m->source_index[e];
   struct sph_solver *sv = calloc(1, sizeof *sv);
-  sph_solver_init(sv, cfg, &s, wall, edge);
-  free(wall);
-  free(edge);
+  /* segment j is mesh element j: the mesh's own wall index and element number of each */
+  sph_solver_init(sv, cfg, &s, g.walls.source, g.walls.source_index);
   free(cfg);
   sph_system_free(&s);
   sph_geometry_free(&g);

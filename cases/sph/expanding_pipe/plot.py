@@ -38,7 +38,7 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import Checks, read_csv, read_pvd, read_vtu, used_dr  # noqa: E402
+from sabre_output import Checks, read_csv, read_pvd, read_vtu, time_mean, used_dr  # noqa: E402
 
 G = 9.81                      # for the head only (the flow has no gravity)
 NU = 3.19e-5                  # as in case.yaml
@@ -117,8 +117,7 @@ def analyse(out):
     with open(os.path.join(out, "used_case.yaml")) as fh:
         px = np.array([pt[0] for pt in yaml.safe_load(fh)["probes"]["pressure"]])
     pr = read_csv(os.path.join(out, "probes.csv"))
-    wt = np.diff(pr["time"], prepend=pr["time"][0]) * (pr["time"] >= T_AVG)
-    pmean = np.array([np.sum(pr["p%d" % i] * wt) / np.sum(wt) for i in range(len(px))])
+    pmean = np.array([time_mean(pr["time"], pr["p%d" % i], T_AVG) for i in range(len(px))])
     phead = np.interp(px, xc, u2) / (2 * G) + pmean / (rho * G)
     b1, b2 = fits(px, phead)
     errs = {}
@@ -128,11 +127,9 @@ def analyse(out):
         errs[x0] = float(np.mean(np.abs(us - umax * (1 - (ys / r) ** 2))) / umax)
     fin = read_csv(os.path.join(out, "open_inlet.csv"))
     fout = read_csv(os.path.join(out, "open_outlet.csv"))
-    w = fin["time"] >= T_AVG
-    # time means of the mass fluxes over the window (rows are diagnostics rows: weight by dt)
-    dt = np.diff(fin["time"], prepend=fin["time"][0])
-    qin = float(np.sum(fin["mass_flux"][w] * dt[w]) / np.sum(dt[w]))
-    qout = float(-np.sum(fout["mass_flux"][w] * dt[w]) / np.sum(dt[w]))
+    # time means of the mass fluxes over the window
+    qin = time_mean(fin["time"], fin["mass_flux"], T_AVG)
+    qout = -time_mean(fout["time"], fout["mass_flux"], T_AVG)
     diag = read_csv(os.path.join(out, "diagnostics.csv"))
     wd = diag["time"] >= T_AVG
     mass = diag["mass"][wd]

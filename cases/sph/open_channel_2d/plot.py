@@ -17,18 +17,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import Checks, read_csv, used_dr  # noqa: E402
+from sabre_output import Checks, read_csv, time_mean, used_dr  # noqa: E402
 
 DEPTH = 0.21        # the initial free surface (top row + dr/2) and the outlet's depth [m]
 U = 0.5             # inflow speed [m/s]
 T_END = 100.0       # the committed end time [s]
 GAUGES = (0.25, 0.5, 0.75)
-
-
-def mean_over(t, y, t0):
-    """dt-weighted mean of y over t >= t0 (nan when the run ended before t0)."""
-    w = np.diff(t, prepend=t[0]) * (t >= t0)
-    return float(np.sum(w * y) / np.sum(w)) if np.sum(w) > 0 else float("nan")
 
 
 def main():
@@ -57,8 +51,8 @@ def main():
           % (100 * mdev, 100 * float(np.max(np.abs(mass / mass[0] - 1)))))
     print("  fluid particles: %d at the start, %d-%d over the run; largest deviation over the last "
           "half %.2f %%" % (count[0], count.min(), count.max(), 100 * cdev))
-    qin, qout = mean_over(fin["time"], fin["volume_flux"], half), \
-        -mean_over(fout["time"], fout["volume_flux"], half)
+    qin, qout = time_mean(fin["time"], fin["volume_flux"], half), \
+        -time_mean(fout["time"], fout["volume_flux"], half)
     # the particles carry U (d - dr/2): the floor's vertex layer stands for the fluid below dr/2
     # (the corner rule gives its flux to no vertex, docs/sph-solver.md §10)
     print("  volume flux over the last half: in %.5f m^2/s, out %.5f (U (d - dr/2) = %.5f)"

@@ -190,6 +190,13 @@ long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *s
   return jmin >= 0 && op->seg_group[jmin] >= 0 ? jmin : -1; /* behind a wall: not an exit */
 }
 
+/* Does open vertex iv take a share of its segments' fluxes: not a corner, and wet (at or below
+ * the free surface, open.c)? */
+static int takes_flux(const struct sph_open *op, const struct sph_parts *v, size_t iv) {
+  return !(v->flags[iv] & SPH_FLAG_CORNER) &&
+         op->pts[op->vert_group[iv]].wet[op->vert_point[iv]] > 0.0;
+}
+
 double sph_open_share_flux(const struct sph_system *s, const struct sph_open *op, size_t j,
                            double q, double *acc) {
   const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
@@ -198,19 +205,13 @@ double sph_open_share_flux(const struct sph_system *s, const struct sph_open *op
   int nfree = 0, nwet = 0;
   for (int d = 0; d < s->dim; d++) {
     const size_t iv = sg->vertex[d][j];
-    if (v->flags[iv] & SPH_FLAG_CORNER) continue;
-    nfree++;
-    nwet += op->pts[op->vert_group[iv]].wet[op->vert_point[iv]] > 0.0;
+    nfree += !(v->flags[iv] & SPH_FLAG_CORNER);
+    nwet += takes_flux(op, v, iv);
   }
   if (nwet == 0) return 0.0;
   const double share = nwet == nfree ? q / s->dim : q * nfree / (s->dim * nwet);
-  for (int d = 0; d < s->dim; d++) {
-    const size_t iv = sg->vertex[d][j];
-    if ((v->flags[iv] & SPH_FLAG_CORNER) ||
-        !(op->pts[op->vert_group[iv]].wet[op->vert_point[iv]] > 0.0))
-      continue;
-    acc[iv] += share;
-  }
+  for (int d = 0; d < s->dim; d++)
+    if (takes_flux(op, v, sg->vertex[d][j])) acc[sg->vertex[d][j]] += share;
   return nwet * share;
 }
 

@@ -15,6 +15,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "kernel.h"
+#include "operators/pressure.h"
 #include "sabre/common.h"
 #include "sabre/sph_open.h"
 #include "sabre/sph_solver.h"
@@ -131,16 +133,22 @@ static void test_vertex_mass_hand(void **state) {
   fixture_solver_destroy(sv);
 }
 
-/* Run to t_end; return max |M(t) − M(0) − ∫ flux| / M(0) over the steps. */
+/* Run to t_end; return max |M(t) − M(0) − ∫ flux + released| / M(0) over the steps (released:
+ * the mass that left with particles deleted at outflow vertices beyond what those took back). */
 static double conservation(struct sph_solver *sv, double t_end, double *flux_total) {
   const double m_start = total_mass(sv);
-  double in = 0.0, worst = 0.0;
+  double in = 0.0, worst = 0.0, released0 = 0.0;
+  for (int g = 0; g < sv->open->ngroups; g++) released0 += sv->open->mass_released[g];
   char msg[1024];
   long steps = 0;
   while (sv->time < t_end - 1e-12) {
     if (sph_solver_step(sv, t_end - sv->time, msg, sizeof msg) != 0) fail_msg("%s", msg);
-    for (int g = 0; g < sv->open->ngroups; g++) in += sv->open->mass_step[g];
-    worst = fmax(worst, fabs(total_mass(sv) - m_start - in) / m_start);
+    double released = -released0;
+    for (int g = 0; g < sv->open->ngroups; g++) {
+      in += sv->open->mass_step[g];
+      released += sv->open->mass_released[g];
+    }
+    worst = fmax(worst, fabs(total_mass(sv) - m_start - in + released) / m_start);
     steps++;
   }
   *flux_total = in;
@@ -224,7 +232,8 @@ static void test_io_terms(void **state) {
 /* Creation and deletion by hand: a vertex given 1.25 particle masses (ρ_v Δr², ρ_v its solved
  * density) above its wall mass creates
  * one particle Δr/2 in front of it; a particle put behind the open face is deleted and its mass
- * goes to the two vertices of the segment it crossed. */
+ * goes to the two vertices of the segment it crossed (inflow vertices, J 14), or brings them back
+ * towards their wall masses by its weights and the rest is released (outflow vertices). */
 static void test_create_delete_hand(void **state) {
   (void)state;
   sabre_fp_traps_on();
@@ -281,10 +290,105 @@ static void test_create_delete_hand(void **state) {
   assert_true(v->mass[iv] == mv + 0.5 * f_mass && v->mass[iu] == mu + 0.5 * f_mass);
   assert_true(fabs(total_mass(sv) - m2) <= 1e-15 * m2);
   assert_int_equal(op->deleted[0], 1);
+  assert_true(op->mass_released[0] == 0.0); /* inflow vertices: J(14), nothing released */
   print_message(
       "created at (%.6g, %.6g) (phi = %.4g) and deleted, total mass unchanged (1e-15); started at "
       "%.15g kg\n",
       0.3 - off, 0.075, sv->vertex_phi, m_start);
+  /* at outflow vertices (ṁ < 0): a particle crossing a quarter of the way from (0.3, 0.075) to
+   * (0.3, 0.1) brings the first 3/4 and the second 1/4 of the way back to their wall masses; the
+   * rest of its mass is released */
+  const size_t b0 = 0, nb0 = f->n;
+  const int64_t gone = f->id[b0];
+  f->x[0][b0] = 0.305;
+  f->x[1][b0] = 0.08125;
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  assert_true(sv->nb.behind[b0]);
+  v->mass[iv] = base - 0.6 * m_ref;
+  v->mass[iu] = op->mass_base[iu] - 0.2 * m_ref;
+  op->mdot[iv] = op->mdot[iu] = -1.0;
+  const double mv0 = v->mass[iv], mu0 = v->mass[iu], mb = f->mass[b0], m3 = total_mass(sv);
+  assert_int_equal(sph_open_delete_particles(op, sv), 1);
+  f = &sv->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f->n, nb0 - 1);
+  for (size_t b = 0; b < f->n; b++) assert_true(f->id[b] != gone);
+  const double dv = 0.75 * (base - mv0), du = 0.25 * (op->mass_base[iu] - mu0);
+  assert_true(fabs(v->mass[iv] - (mv0 + dv)) <= 1e-15 * base &&
+              fabs(v->mass[iu] - (mu0 + du)) <= 1e-15 * base);
+  assert_true(fabs(op->mass_released[0] - (mb - dv - du)) <= 1e-15 * mb);
+  assert_true(fabs(total_mass(sv) + op->mass_released[0] - m3) <= 1e-15 * m3);
+  print_message(
+      "deleted at outflow vertices 0.6 and 0.2 particle masses below their wall mass "
+      "(weights 3/4, 1/4): back by 0.45 and 0.05, %.4g of the particle's mass released\n",
+      op->mass_released[0] / mb);
+  fixture_solver_destroy(sv);
+}
+
+/* The inflow vertices' entered mass as a layer (sph_open_layer, docs/sph-solver.md §10): a vertex
+ * 0.4 particle masses above its wall mass puts δm/ρ_v at r_v + (φ + 0.2)Δr n_v (at one particle
+ * mass: where the particle will be created), the corner and the wall vertices nothing; in the
+ * pressure gradient of a particle near it, that volume counts there instead of at r_v, by hand. */
+static void test_layer_hand(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_solver *sv = box_solver("impose: velocity, normal_velocity: 0.05");
+  struct sph_open *op = sv->open;
+  sph_solver_evaluate(sv);
+  struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  size_t iv = (size_t)-1;
+  for (size_t i = 0; i < v->n; i++)
+    if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.075) < 1e-12) iv = i;
+  assert_true(iv != (size_t)-1 && v->v[0][iv] < 0.0); /* inflow: into the fluid, −x */
+  const double m_new = v->rho[iv] * op->cell_volume, phi = sv->vertex_phi, dr = 0.025;
+  v->mass[iv] = op->mass_base[iv] + 0.4 * m_new;
+  sph_open_layer(op, sv);
+  const double lv = op->layer_vol[iv];
+  assert_true(fabs(lv - 0.4 * m_new / v->rho[iv]) <= 1e-15 * m_new / v->rho[iv]);
+  assert_true(fabs(op->layer_x[0][iv] - (0.3 - (phi + 0.2) * dr)) <= 1e-15 &&
+              fabs(op->layer_x[1][iv] - 0.075) <= 1e-15);
+  size_t nlayer = 0;
+  for (size_t i = 0; i < v->n; i++) nlayer += op->layer_vol[i] != 0.0;
+  assert_int_equal(nlayer, 1); /* the others are at their wall mass, corners and walls too */
+  /* at one particle mass the layer's centre is the created particle's position */
+  v->mass[iv] = op->mass_base[iv] + m_new;
+  sph_open_layer(op, sv);
+  assert_true(fabs(op->layer_x[0][iv] - (0.3 - (phi + 0.5) * dr)) <= 1e-15);
+  v->mass[iv] = op->mass_base[iv] + 0.4 * m_new;
+  sph_open_layer(op, sv);
+  /* the particle nearest to the layer's centre: its gradient with and without the layer */
+  size_t a = 0;
+  double best = INFINITY;
+  for (size_t b = 0; b < f->n; b++) {
+    const double d = hypot(f->x[0][b] - op->layer_x[0][iv], f->x[1][b] - op->layer_x[1][iv]);
+    if (d < best) best = d, a = b;
+  }
+  const struct sph_op o = {&sv->sys, &sv->kernel, &sv->nb};
+  const struct sph_vertex_layer layer = {op->layer_vol, (const double *const *)op->layer_x};
+  const double *pk[SPH_NKINDS] = {sv->sys.part[0].p, sv->sys.part[1].p, sv->sys.part[2].p};
+  double g1[3], g0[3];
+  sph_op_grad_pressure(&o, sv->cfg.grad_k, pk, a, NULL, 0, &layer, g1);
+  sph_op_grad_pressure(&o, sv->cfg.grad_k, pk, a, NULL, 0, NULL, g0);
+  /* by hand: lv (ratio p_v + p_a / ratio) [∇w(r_a − x_l) − ∇w(r_a − r_v)] / γ_a, k = 1 */
+  assert_true(sv->cfg.grad_k == 1.0);
+  const double ratio = f->rho[a] / v->rho[iv], sum = ratio * v->p[iv] + f->p[a] / ratio;
+  double expect[2];
+  for (int c = 0; c < 2; c++) {
+    const double dl[2] = {f->x[0][a] - op->layer_x[0][iv], f->x[1][a] - op->layer_x[1][iv]};
+    const double dv[2] = {f->x[0][a] - v->x[0][iv], f->x[1][a] - v->x[1][iv]};
+    const double rl = hypot(dl[0], dl[1]), rv = hypot(dv[0], dv[1]);
+    const double gl = rl < 2.0 * sv->sys.h ? sph_kernel_dwdr_inline(&sv->kernel, rl) / rl : 0.0;
+    const double gv = rv < 2.0 * sv->sys.h ? sph_kernel_dwdr_inline(&sv->kernel, rv) / rv : 0.0;
+    expect[c] = lv * sum * (gl * dl[c] - gv * dv[c]) / f->gamma[a];
+  }
+  const double scale = fabs(expect[0]) + fabs(expect[1]);
+  print_message(
+      "layer: vertex 0.4 particle masses above its wall mass, its layer %.4g m in front; "
+      "particle %.3g m from it: gradient change (%.6g, %.6g) Pa/m, by hand (%.6g, %.6g)\n",
+      (phi + 0.2) * dr, best, g1[0] - g0[0], g1[1] - g0[1], expect[0], expect[1]);
+  assert_true(scale > 0.0);
+  for (int c = 0; c < 2; c++) assert_true(fabs(g1[c] - g0[c] - expect[c]) <= 1e-10 * scale);
   fixture_solver_destroy(sv);
 }
 
@@ -309,7 +413,9 @@ static void test_through_flow(void **state) {
   double row[SPH_OPEN_CSV_COLUMNS];
   sph_open_csv_row(op, 1, sv->time, row);
   assert_string_equal(sph_open_csv_columns()[14], "deleted");
-  assert_true(row[13] == (double)op->created[1] && row[14] == (double)op->deleted[1]);
+  assert_string_equal(sph_open_csv_columns()[15], "mass_released");
+  assert_true(row[13] == (double)op->created[1] && row[14] == (double)op->deleted[1] &&
+              row[15] == op->mass_released[1]);
   double du = 0.0, dv = 0.0, drho = 0.0;
   for (size_t a = 0; a < n1; a++) {
     du = fmax(du, fabs(f->v[0][a] - 0.5));
@@ -447,10 +553,10 @@ static void test_pressure_level(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_vertex_mass_hand), cmocka_unit_test(test_conservation),
-      cmocka_unit_test(test_io_terms),         cmocka_unit_test(test_create_delete_hand),
-      cmocka_unit_test(test_through_flow),     cmocka_unit_test(test_restart_through_flow),
-      cmocka_unit_test(test_pressure_level),
+      cmocka_unit_test(test_vertex_mass_hand),     cmocka_unit_test(test_conservation),
+      cmocka_unit_test(test_layer_hand),           cmocka_unit_test(test_io_terms),
+      cmocka_unit_test(test_create_delete_hand),   cmocka_unit_test(test_through_flow),
+      cmocka_unit_test(test_restart_through_flow), cmocka_unit_test(test_pressure_level),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

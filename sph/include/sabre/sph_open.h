@@ -272,6 +272,18 @@ struct sph_open {
   double cell_volume; /**< Δr^d, the volume of a created particle: its mass is the vertex's solved
                            density times it [m^d] */
   long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
+  /** Mass that left with particles deleted through each group beyond what the group's outflow
+   *  vertices took back, since the run began [kg; 2D per unit depth]: a particle leaving through
+   *  an outflow vertex (ṁ_v < 0) brings that vertex's mass back towards its wall mass by the
+   *  particle's barycentric weight instead of adding the particle's mass to it
+   *  (sph_open_delete_particles). Fluid + vertex masses − Σ ∫ mass_flux dt + Σ mass_released is
+   *  constant. */
+  double mass_released[SPH_MAX_OPEN_GROUPS];
+  /** The entered mass of inflow vertices as a layer in the pressure gradient (sph_open_layer):
+   *  per vertex, the volume m_v/ρ_v − m_base/ρ_v taken from the vertex (0 for the others) [m^d]
+   *  and where it counts instead [m]. */
+  double *layer_vol;
+  double *layer_x[3];
   struct rmn_workspace *ws;
   double *work; /**< scratch of sph_open_boundary_values(): the Shepard sums of every point */
   /** First failure of the last evaluation: 0 none, else the riemann/ status; and its message
@@ -341,9 +353,16 @@ void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);
 
 /**
  * Delete the fluid particles that left the domain through an open segment: those flagged behind
- * the walls (sv->nb.behind, from the last γ evaluation) whose nearest element is an open segment;
- * the mass of each goes to that segment's vertices (the rule of sph_open_share). Compacts
- * nb.behind with the store. Returns how many were deleted (0 for op == NULL).
+ * the walls (sv->nb.behind, from the last γ evaluation) whose nearest element is an open segment.
+ * The segment's vertices take the particle's barycentric weights w_v (sph_open_share's rule:
+ * corners' weights to the others): an inflow vertex (ṁ_v ≥ 0 at the last evaluation) gains
+ * w_v m_a, J(14); an outflow vertex (ṁ_v < 0) has its mass brought back towards its wall mass,
+ * m_v += w_v (m_base,v − m_v), and what the particle brought beyond that, w_v m_a minus that
+ * change, leaves with it (mass_released): at an outflow the vertex's mass below its wall mass is
+ * the fluid its flux let out before the particle crossed, and this rule keeps it in phase with the
+ * particles instead of integrating the difference between the flux and the crossings
+ * (docs/sph-solver.md §10). Compacts nb.behind with the store. Returns how many were deleted (0 for
+ * op == NULL).
  */
 size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv);
 /**
@@ -362,6 +381,16 @@ long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *s
  * many were created.
  */
 size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv);
+/**
+ * The entered mass of the inflow vertices as a layer (docs/sph-solver.md §10): for each open
+ * vertex that is not a corner, whose solved velocity points into the fluid (u·n_v > 0) and whose
+ * mass exceeds its wall mass, δm = m_v − m_base > 0 (the fluid that has entered and is not yet a
+ * particle), layer_vol = δm/ρ_v and layer_x = r_v + (φ + ½ δm/(ρ_v Δr^d)) Δr n_v: the centre of the
+ * layer δm stands for, in front of the wall layer (φΔr thick) of the vertex; at δm = ρ_v Δr^d, the
+ * position of the particle the vertex then creates. 0 for every other vertex. From the store as it
+ * is (vertex masses, solved values). No-op for op == NULL.
+ */
+void sph_open_layer(struct sph_open *op, const struct sph_solver *sv);
 
 /**
  * The i/o terms of the time-summation continuity J(11) for fluid particle a, from the start
@@ -376,7 +405,7 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
                                  const double xa0[3], double rho_a0, double fac);
 
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
-#define SPH_OPEN_CSV_COLUMNS 15
+#define SPH_OPEN_CSV_COLUMNS 16
 const char *const *sph_open_csv_columns(void);
 /** One row of open_<name>.csv for group g from its last stats (time given by the caller). */
 void sph_open_csv_row(const struct sph_open *op, int g, double time,

@@ -2,7 +2,7 @@
  * Checkpoints: the whole particle store through its field table (so a field added to the store is
  * saved without touching this file), the run's time, step, last Δt and output counters, and the
  * imposed-flux controller's history (M 62–63 depend on the last two measured velocities) and the
- * open boundaries' counts of created and deleted particles. Raw
+ * open boundaries' counts of created and deleted particles and their released mass. Raw
  * native-endian binary: a checkpoint restarts a run on the machine that wrote it, bit-identically
  * for the same thread count (the step depends only on this state).
  */
@@ -14,7 +14,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT6";
+static const char magic[16] = "SABRE-SPH-CKPT7";
 
 void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c) {
   rc->ndigest = 0;
@@ -89,6 +89,9 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
     ocount[1][g] = sv->open->deleted[g];
   }
   W(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
+  double released[SPH_MAX_OPEN_GROUPS] = {0.0};
+  for (int g = 0; sv->open && g < sv->open->ngroups; g++) released[g] = sv->open->mass_released[g];
+  W(released, sizeof released[0], SPH_MAX_OPEN_GROUPS);
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);
   for (int k = 0; k < SPH_NKINDS; k++) {
@@ -241,9 +244,12 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   {
     int64_t ocount[2][SPH_MAX_OPEN_GROUPS];
     R(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
+    double released[SPH_MAX_OPEN_GROUPS];
+    R(released, sizeof released[0], SPH_MAX_OPEN_GROUPS);
     for (int g = 0; sv->open && g < sv->open->ngroups; g++) {
       sv->open->created[g] = (long)ocount[0][g];
       sv->open->deleted[g] = (long)ocount[1][g];
+      sv->open->mass_released[g] = released[g];
     }
   }
   int nf;

@@ -118,8 +118,9 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
   return 0.5 * rho_a0 * seg_sum + vert_sum;
 }
 
-void sph_open_share(const struct sph_system *s, size_t j, const double x[3], double q,
-                    double *acc) {
+/* The weights of sph_open_share: share[d] for the segment's vertex d. */
+static void share_weights(const struct sph_system *s, size_t j, const double x[3],
+                          double share[3]) {
   const struct sph_parts *v = &s->part[SPH_KIND_VERTEX], *sg = &s->part[SPH_KIND_SEGMENT];
   const int dim = s->dim;
   double ex[3][3], foot[3], w[3] = {1.0, 0.0, 0.0};
@@ -156,18 +157,25 @@ void sph_open_share(const struct sph_system *s, size_t j, const double x[3], dou
   int nfree = 0;
   for (int d = 0; d < dim; d++)
     if (!(v->flags[sg->vertex[d][j]] & SPH_FLAG_CORNER)) free_w += w[d], nfree++;
+  share[0] = share[1] = share[2] = 0.0;
   for (int d = 0; d < dim; d++) {
     const size_t iv = sg->vertex[d][j];
     const int corner = (v->flags[iv] & SPH_FLAG_CORNER) != 0;
-    double share;
     if (nfree == 0)
-      share = w[d];
+      share[d] = w[d];
     else if (free_w > 0.0)
-      share = corner ? 0.0 : w[d] / free_w;
+      share[d] = corner ? 0.0 : w[d] / free_w;
     else
-      share = corner ? 0.0 : 1.0 / nfree;
-    acc[iv] += q * share;
+      share[d] = corner ? 0.0 : 1.0 / nfree;
   }
+}
+
+void sph_open_share(const struct sph_system *s, size_t j, const double x[3], double q,
+                    double *acc) {
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
+  double share[3];
+  share_weights(s, j, x, share);
+  for (int d = 0; d < s->dim; d++) acc[sg->vertex[d][j]] += q * share[d];
 }
 
 long sph_open_exit_segment(const struct sph_open *op, const struct sph_solver *sv, size_t a) {
@@ -219,6 +227,7 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
   if (!op) return 0;
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
+  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
   uint8_t *remove = NULL;
   size_t count = 0;
   for (size_t a = 0; a < f->n; a++) {
@@ -227,8 +236,22 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
     if (!remove) remove = cmn_calloc(f->n + 1, 1);
     remove[a] = 1;
     const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-    sph_open_share(s, (size_t)jmin, xa, f->mass[a], v->mass);
-    op->deleted[op->seg_group[jmin]]++;
+    const int g = op->seg_group[jmin];
+    double w[3]; /* the particle's weights on the segment's vertices (sph_open_share's rule) */
+    share_weights(s, (size_t)jmin, xa, w);
+    for (int d = 0; d < s->dim; d++) {
+      const size_t iv = sg->vertex[d][jmin];
+      if (w[d] == 0.0) continue;
+      const double q = w[d] * f->mass[a];
+      if (op->mdot[iv] < 0.0) { /* outflow: back towards the wall mass, the rest leaves */
+        const double dm = w[d] * (op->mass_base[iv] - v->mass[iv]);
+        v->mass[iv] += dm;
+        op->mass_released[g] += q - dm;
+      } else {
+        v->mass[iv] += q; /* J(14) */
+      }
+    }
+    op->deleted[g]++;
     count++;
   }
   if (!count) return 0;
@@ -271,4 +294,26 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
     count++;
   }
   return count;
+}
+
+void sph_open_layer(struct sph_open *op, const struct sph_solver *sv) {
+  if (!op) return;
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++) {
+    op->layer_vol[i] = 0.0;
+    const int g = op->vert_group[i];
+    if (g < 0 || (v->flags[i] & SPH_FLAG_CORNER) || !(v->rho[i] > 0.0)) continue;
+    const double dm = v->mass[i] - op->mass_base[i];
+    if (!(dm > 0.0)) continue;
+    const double *n = op->pts[g].normal[op->vert_point[i]];
+    double un = 0.0;
+    for (int c = 0; c < 3; c++) un += v->v[c][i] * n[c];
+    if (!(un > 0.0)) continue; /* an outflow (or a dry vertex, at rest): the mass stays at r_v */
+    /* the layer of fluid δm stands for: δm/(ρ_v Δr^{d−1}) thick, in front of the wall layer */
+    const double frac = dm / (v->rho[i] * op->cell_volume);
+    const double off = (sv->vertex_phi + 0.5 * frac) * s->dr;
+    op->layer_vol[i] = dm / v->rho[i];
+    for (int c = 0; c < 3; c++) op->layer_x[c][i] = v->x[c][i] + off * n[c];
+  }
 }

@@ -173,6 +173,8 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
   op->mass0 = cmn_calloc(v->n + 1, sizeof *op->mass0);
   for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
   op->mass_base = cmn_calloc(v->n + 1, sizeof *op->mass_base); /* sph_open_mass_base() */
+  op->layer_vol = cmn_calloc(v->n + 1, sizeof *op->layer_vol); /* sph_open_layer() */
+  for (int c = 0; c < 3; c++) op->layer_x[c] = cmn_calloc(v->n + 1, sizeof *op->layer_x[c]);
   op->cell_volume = pow(sv->sys.dr, dim);
   for (size_t i = 0, q = 0; i < v->n; i++)
     if (op->vert_group[i] >= 0) {
@@ -217,6 +219,8 @@ void sph_open_free(struct sph_open *op) {
   free(op->mdot);
   free(op->mass0);
   free(op->mass_base);
+  free(op->layer_vol);
+  for (int c = 0; c < 3; c++) free(op->layer_x[c]);
   free(op->work);
   rmn_workspace_free(op->ws);
   free(op);
@@ -477,9 +481,9 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
 
 const char *const *sph_open_csv_columns(void) {
   static const char *const names[SPH_OPEN_CSV_COLUMNS] = {
-      "time",        "imposed",     "p",         "un",      "p_interior",
-      "un_interior", "volume_flux", "mass_flux", "level",   "contact",
-      "expansion",   "shock",       "dry",       "created", "deleted"};
+      "time",        "imposed",   "p",       "un",           "p_interior", "un_interior",
+      "volume_flux", "mass_flux", "level",   "contact",      "expansion",  "shock",
+      "dry",         "created",   "deleted", "mass_released"};
   return names;
 }
 
@@ -500,6 +504,7 @@ void sph_open_csv_row(const struct sph_open *op, int g, double time,
                                           (double)s->nwave[RMN_WAVE_SHOCK],
                                           (double)s->ndry,
                                           (double)op->created[g],
-                                          (double)op->deleted[g]};
+                                          (double)op->deleted[g],
+                                          op->mass_released[g]};
   memcpy(row, r, sizeof r);
 }

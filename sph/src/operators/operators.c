@@ -39,7 +39,8 @@ static double open_share(const struct sph_op *op, size_t a) {
 }
 
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int push_only, const double *impedance, int open_difference, double out[3]) {
+                 int push_only, const double *impedance, int open_difference,
+                 const struct sph_vertex_layer *layer, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
@@ -64,8 +65,21 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       double sum = ratio * fb + fa / ratio;
       if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
       if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
-      const double t = vb * sum * pr.dwdr_over_r;
+      const double lv = layer && kind == SPH_KIND_VERTEX ? layer->vol[b] : 0.0;
+      const double t = (vb - lv) * sum * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
+      if (lv != 0.0) { /* the vertex's entered mass, at the centre of its layer */
+        const double xa[3] = {pa->x[0][a], pa->x[1][a], pa->x[2][a]};
+        const double xl[3] = {layer->x[0][b], layer->x[1][b], layer->x[2][b]};
+        double d[3];
+        sph_domain_delta(&s->domain, xl, xa, d); /* r_a − the layer's centre */
+        const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        const double r = sqrt(r2);
+        if (r > 0.0 && r < sph_kernel_support(op->kernel)) {
+          const double tl = lv * sum * sph_kernel_dwdr_inline(op->kernel, r) / r;
+          for (int c = 0; c < 3; c++) g[c] += tl * d[c];
+        }
+      }
     }
   }
   const struct sph_parts *ps = &s->part[SPH_KIND_SEGMENT];
@@ -89,12 +103,13 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 
 void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
                  double out[3]) {
-  grad(op, k, f, a, 0, NULL, 0, out);
+  grad(op, k, f, a, 0, NULL, 0, NULL, out);
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, int open_difference, double out[3]) {
-  grad(op, k, p, a, 1, impedance, open_difference, out);
+                          size_t a, const double *impedance, int open_difference,
+                          const struct sph_vertex_layer *layer, double out[3]) {
+  grad(op, k, p, a, 1, impedance, open_difference, layer, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }

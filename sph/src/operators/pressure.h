@@ -36,8 +36,18 @@
  * difference form (ρ_a/ρ_b)^k (f_b − f_a) and χ_a = 0 (walls only, or the bulk) M(37) unchanged,
  * bit for bit. Without it the flowing rows' zeroth-order defect at an open boundary pushes the
  * fluid in proportion to the pressure level (docs/sph-solver.md §10).
+ *
+ * layer (NULL: none): per vertex b, a volume vol[b] [m^d] that counts at (x[0][b], x[1][b],
+ * x[2][b]) instead of at r_b, with b's pressure and density (its volume at r_b is then
+ * m_b/ρ_b − vol[b]): the entered mass of the inflow vertices (sph_open_layer,
+ * docs/sph-solver.md §10). A vertex pair left out by the rule above is left out at both places.
  */
+struct sph_vertex_layer {
+  const double *vol;
+  const double *const *x;
+};
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, int open_difference, double out[3]);
+                          size_t a, const double *impedance, int open_difference,
+                          const struct sph_vertex_layer *layer, double out[3]);
 
 #endif

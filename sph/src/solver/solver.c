@@ -426,6 +426,12 @@ static void forces_impl(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++)
     for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
   const double *flux[3] = {sv->wall_flux[0], sv->wall_flux[1], sv->wall_flux[2]};
+  /* the inflow vertices' entered mass as a layer in front of them, with M(37) (§10) */
+  const int use_layer = sv->open && !sv->open_off && !sv->cfg.open_gradient_difference;
+  if (use_layer) sph_open_layer(sv->open, sv);
+  const struct sph_vertex_layer layer = {
+      use_layer ? sv->open->layer_vol : NULL,
+      use_layer ? (const double *const *)sv->open->layer_x : NULL};
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
@@ -438,7 +444,7 @@ static void forces_impl(struct sph_solver *sv) {
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
     /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
     sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
-                         sv->cfg.open_gradient_difference, gp);
+                         sv->cfg.open_gradient_difference, use_layer ? &layer : NULL, gp);
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

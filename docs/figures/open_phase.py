@@ -5,9 +5,9 @@ rows moving through the open face.
 
 The layout is SABRE's: a channel between walls at y = 0 and y = H = 11 dr, the open face at x = 0,
 fluid rows dr apart with the first row dr from each wall, wall vertices dr apart with the volume
-phi dr^2 of their wall layer (phi = 1/2), open vertices at the face with the same wall volume plus
-the mass that has entered (inlet: delta m = theta m_ref, the rows at (1 + theta + k) dr, a particle
-created at dr when delta m reaches m_ref) or left (outlet: delta m = -theta m_ref, the rows at
+phi dr^2 of their wall layer (phi = 1/2, or the first argument), open vertices at the face with the
+same wall volume plus the mass that has entered (inlet: delta m = theta m_ref, the rows at
+(phi + 1/2 + theta + k) dr, a particle created at (phi + 1/2) dr when delta m reaches m_ref) or left (outlet: delta m = -theta m_ref, the rows at
 -(k + 1 - theta) dr, the row at the face giving its mass back when it crosses); corners keep their
 wall volume. grad gamma_a is the exact boundary integral sum_s int_s w n_in dl over the face and the
 two walls (Gauss-Legendre, 8 panels of 64 points per element), the Wendland C2 kernel with
@@ -20,13 +20,15 @@ gradient of a constant 1 with M(37)), in the row next to a wall (lane 1), the se
 the middle of the channel (lane 5); a pressure level p pushes the fluid with -p G / rho, so that
 p times the integral is the pressure difference it needs. Runs in a few seconds:
 
-    /usr/bin/python3 docs/figures/open_phase.py
+    /usr/bin/python3 docs/figures/open_phase.py [PHI]
 """
+import sys
+
 import numpy as np
 
 DR = 0.02
 H_SMOOTH = 2 * DR
-PHI = 0.5
+PHI = float(sys.argv[1]) if len(sys.argv) > 1 else 0.5
 NY = 11
 HEIGHT = NY * DR
 A_KERNEL = 7.0 / (4 * np.pi * H_SMOOTH * H_SMOOTH)
@@ -68,7 +70,7 @@ def grad_gamma(p, side):
 def layout(side, theta, where):
     nrow = 14
     if side > 0:
-        rows = [(1 + theta + k) * DR for k in range(nrow)]
+        rows = [(PHI + 0.5 + theta + k) * DR for k in range(nrow)]
     else:
         rows = [-(k + 1 - theta) * DR for k in range(nrow)]
     pts = [(x, j * DR) for x in rows for j in range(1, NY)]

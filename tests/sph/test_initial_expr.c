@@ -1,7 +1,8 @@
 /*
  * Initial profiles as expressions of the coordinates (docs/sph-case-file.md, `initial`):
  * velocity components, pressure and density reach every fluid particle exactly as the expression
- * gives them (density through the Tait EOS for a pressure), masses follow; bad expressions and
+ * gives them (density through the Tait EOS for a pressure), masses follow; a wave (initial.wave)
+ * keeps the fluid below its surface with its velocity and pressure; bad expressions and
  * inconsistent keys fail naming the key (non-fatal mode).
  */
 #include <math.h>
@@ -83,6 +84,57 @@ static void test_initial_expressions(void **state) {
   sph_solver_free(&sv);
 }
 
+/* initial.wave: the fluid below Fenton's surface at t = 0 (a lattice point is kept when it lies
+ * below η at its x), with the wave's velocity and pressure. */
+static void test_initial_wave(void **state) {
+  (void)state;
+  struct sph_solver sv;
+  char msg[512];
+  int rc = setup(
+      "gravity: [0, -9.81]\n"
+      "initial:\n"
+      "  wave:\n"
+      "    stokes5: {depth: 0.3, amplitude: 0.03, length: 1.0, x0: 0.2}\n",
+      &sv, msg, sizeof msg);
+  if (rc) print_error("%s\n", msg);
+  assert_int_equal(rc, 0);
+  struct sph_stokes5_params wp;
+  sph_stokes5_params_init(&wp);
+  wp.depth = 0.3;
+  wp.height = 0.06;
+  wp.length = 1.0;
+  wp.g = 9.81;
+  wp.rho0 = 1000.0;
+  struct sph_stokes5 w;
+  assert_int_equal(sph_stokes5_init(&w, &wp, NULL, 0), SPH_WAVE_SUCCESS);
+  /* the lattice of the fluid box: columns 0.05 ... 0.45, rows 0.05 ... 0.40 */
+  size_t expected = 0;
+  int crest_row = 0;
+  for (int i = 1; i <= 9; i++)
+    for (int j = 1; j <= 8; j++) {
+      struct sph_wave_point pt;
+      sph_stokes5_eval(&w, 0.05 * i - 0.2, 0.05 * j, 0.0, &pt);
+      expected += 0.05 * j < pt.eta;
+      crest_row |= j == 6 && 0.05 * j < pt.eta;
+    }
+  assert_true(crest_row);        /* the wave's crest keeps part of the row at 0.30 m */
+  assert_true(expected < 9 * 6); /* and its trough removes the rest */
+  const struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f->n, expected);
+  for (size_t a = 0; a < f->n; a++) {
+    struct sph_wave_point pt;
+    assert_int_equal(sph_stokes5_eval(&w, f->x[0][a] - 0.2, f->x[1][a], 0.0, &pt),
+                     SPH_WAVE_SUCCESS);
+    assert_true(f->x[1][a] < pt.eta);
+    assert_true(fabs(f->v[0][a] - pt.u) <= 1e-15);
+    assert_true(fabs(f->v[1][a] - pt.w) <= 1e-15);
+    assert_true(pt.p > 0.0);
+    assert_rel(f->rho[a], rmn_eos_density(&sv.eos, pt.p), 1e-15);
+    assert_rel(f->mass[a], f->rho[a] * 0.05 * 0.05, 1e-15);
+  }
+  sph_solver_free(&sv);
+}
+
 static void expect_error(const char *extra, const char *want) {
   struct sph_solver sv;
   char msg[512];
@@ -103,11 +155,25 @@ static void test_initial_errors(void **state) {
   expect_error("initial: {pressure: 1 +}\n", "unexpected end at column 4");
   expect_error("initial: {pressure: hydrostatic, density: 1000}\ngravity: [0, -9.81]\n",
                "initial.density: give initial.pressure or initial.density, not both");
+  expect_error(
+      "gravity: [0, -9.81]\ninitial:\n  velocity: [0, 0]\n"
+      "  wave: {stokes5: {depth: 0.3, amplitude: 0.03, length: 1}}\n",
+      "initial.velocity: initial.wave gives the free surface, velocity and pressure");
+  expect_error(
+      "gravity: [0, -9.81]\ninitial:\n  wave:\n"
+      "    stokes5: {depth: 0.3, amplitude: 0.03, length: 1}\n"
+      "    solitary: {depth: 0.3, amplitude: 0.1}\n",
+      "initial.wave: give exactly one of 'stokes5' and 'solitary'");
+  expect_error("initial:\n  wave: {solitary: {depth: 0.3, amplitude: 0.1}}\n",
+               "initial.wave: a wave needs a non-zero gravity");
+  expect_error("gravity: [0, -9.81]\ninitial:\n  wave: {stokes5: {depth: 0.3, length: 1}}\n",
+               "initial.wave.stokes5: give exactly one of 'height' (H, m) and 'amplitude'");
 }
 
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_initial_expressions),
+                                     cmocka_unit_test(test_initial_wave),
                                      cmocka_unit_test(test_initial_errors)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

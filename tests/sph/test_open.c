@@ -624,11 +624,12 @@ static void stir(struct sph_solver *sv, double du, double drho) {
 }
 
 /* Naive Shepard interior state at x over every fluid particle, J(33–35) with the full
- * hydrostatic correction and the floor of the wall vertices. */
+ * hydrostatic correction: with gravity each particle's corrected pressure clipped at 0, without
+ * the floor of the wall vertices. */
 static void naive_interior(const struct sph_solver *sv, const double *x, double *p, double u[3],
                            double *alpha, double *ytop) {
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
-  double al = 0.0, sp = 0.0, sr = 0.0, su[3] = {0.0, 0.0, 0.0};
+  double al = 0.0, sp = 0.0, sr = 0.0, spos = 0.0, su[3] = {0.0, 0.0, 0.0};
   *ytop = -INFINITY;
   for (size_t b = 0; b < f->n; b++) {
     double r[3] = {x[0] - f->x[0][b], x[1] - f->x[1][b], x[2] - f->x[2][b]};
@@ -639,12 +640,15 @@ static void naive_interior(const struct sph_solver *sv, const double *x, double 
     const double pb = rmn_eos_pressure(&sv->eos, f->rho[b]);
     *ytop = fmax(*ytop, f->x[1][b]);
     al += vw;
-    sp += vw * (pb + f->rho[b] * (sv->cfg.gravity[0] * r[0] + sv->cfg.gravity[1] * r[1]));
+    const double ph = pb + f->rho[b] * (sv->cfg.gravity[0] * r[0] + sv->cfg.gravity[1] * r[1]);
+    sp += vw * ph;
+    spos += vw * fmax(ph, 0.0);
     sr += vw * pb;
     for (int c = 0; c < 3; c++) su[c] += vw * f->v[c][b];
   }
   *alpha = al;
-  *p = al > 0.0 ? fmax(sp / al, fmin(sr / al, 0.0)) : NAN;
+  const int gravity = sv->cfg.gravity[0] != 0.0 || sv->cfg.gravity[1] != 0.0;
+  *p = !(al > 0.0) ? NAN : gravity ? spos / al : fmax(sp / al, fmin(sr / al, 0.0));
   for (int c = 0; c < 3; c++) u[c] = al > 0.0 ? su[c] / al : NAN;
 }
 

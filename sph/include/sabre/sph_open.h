@@ -139,6 +139,15 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
                          const double gravity[3], const struct rmn_eos *eos);
 
 /**
+ * Read a wave generator mapping at `base` (e.g. "initial.wave": exactly one of `stokes5` and
+ * `solitary`, with the keys of the open-boundary generators) into *g: source SPH_OPEN_STOKES5 or
+ * SPH_OPEN_SOLITARY, name = base, wall −1, imposed velocity. Needs a non-zero gravity and
+ * dimension 2 or 3. Errors name the file, line and key; returns 0 or -1.
+ */
+int sph_open_wave_read(struct cmn_case *c, const char *base, int dim, const double gravity[3],
+                       const struct rmn_eos *eos, struct sph_open_group *g);
+
+/**
  * Check the groups against the wall mesh before anything is written: each selected element
  * (or face) exists and is flagged open (SPH_FLAG_OPEN), a group selects at least one element,
  * and every open element belongs to exactly one group. Element numbers are those of the mesh's
@@ -199,6 +208,15 @@ void sph_open_source_free(struct sph_open_source *src);
  */
 void sph_open_source_eval(const struct sph_open_source *src, double t, const double x[3],
                           const double n[3], double level, struct sph_open_value *out);
+
+/**
+ * A wave generator (stokes5 or solitary, src->group->source) at point x [m], time t [s]: returns
+ * the elevation of the wave's free surface above x along −g [m] (bed + η); *p receives the gauge
+ * pressure [Pa] and u the velocity [m/s], both at x's height clamped to [bed, surface] as in
+ * sph_open_source_eval(). Pure function, thread-safe.
+ */
+double sph_open_source_wave(const struct sph_open_source *src, double t, const double x[3],
+                            double *p, double u[3]);
 
 /** Hydrostatic pressure of the Tait fluid at depth d ≥ 0 below the level of p = 0 [Pa]:
  *  b [(1 + (ξ−1) g d/c0²)^(ξ/(ξ−1)) − 1] (ξ = 1: b (e^{g d/c0²} − 1)), b = ρ0 c0²/ξ, i.e.

@@ -185,6 +185,10 @@ struct sph_config {
   char rho0_expr[256]; /**< initial.density as an expression of x, y, z [kg/m³], or "" */
   int hydrostatic;     /**< initial pressure hydrostatic below free_surface */
   double free_surface; /**< level of p = 0 along −g [m] (NaN: top of the fluid + Δr/2) */
+  /** initial.wave: 1 when a wave (`wave`, source SPH_OPEN_STOKES5 or SPH_OPEN_SOLITARY) gives the
+   *  initial free surface (fluid particles at or above it are removed), velocity and pressure */
+  int initial_wave;
+  struct sph_open_group wave;
   /* numerics */
   double grad_k;          /**< k of M(37)/M(38) */
   int diffusion;          /**< enum sph_diffusion */

@@ -286,6 +286,33 @@ static int read_hydrostatic(struct cmn_case *c, const char *base, struct sph_ope
   return 0;
 }
 
+int sph_open_wave_read(struct cmn_case *c, const char *base, int dim, const double gravity[3],
+                       const struct rmn_eos *eos, struct sph_open_group *g) {
+  memset(g, 0, sizeof *g);
+  snprintf(g->name, sizeof g->name, "%s", base);
+  g->wall = -1;
+  g->imposed = RMN_IMPOSE_VELOCITY;
+  if (cmn_case_is_map(c, base) != 1)
+    return cmn_case_fail(c, base, "expected a mapping with one of 'stokes5' and 'solitary'");
+  char p[192];
+  const int has_s = cmn_case_has(c, key(p, sizeof p, base, "stokes5")),
+            has_l = cmn_case_has(c, key(p, sizeof p, base, "solitary"));
+  if (has_s == has_l) return cmn_case_fail(c, base, "give exactly one of 'stokes5' and 'solitary'");
+  const double gnorm =
+      sqrt(gravity[0] * gravity[0] + gravity[1] * gravity[1] + gravity[2] * gravity[2]);
+  if (!(gnorm > 0.0))
+    return cmn_case_fail(c, base, "a wave needs a non-zero gravity (it sets the vertical)");
+  if (dim < 2) return cmn_case_fail(c, base, "a wave needs dimension 2 or 3");
+  double up[3];
+  for (int k = 0; k < 3; k++) up[k] = -gravity[k] / gnorm;
+  key(p, sizeof p, base, has_s ? "stokes5" : "solitary");
+  if (cmn_case_is_map(c, p) != 1)
+    return cmn_case_fail(c, p, "expected a mapping of the generator's keys");
+  g->source = has_s ? SPH_OPEN_STOKES5 : SPH_OPEN_SOLITARY;
+  if (has_s) return read_stokes5(c, p, dim, gnorm, up, eos, g);
+  return read_solitary(c, p, dim, gnorm, up, eos, g);
+}
+
 /* The value of a group: exactly one of the value keys, of a kind that matches `impose`. */
 static int read_value(struct cmn_case *c, const char *base, int dim, const double gravity[3],
                       const struct rmn_eos *eos, struct sph_open_group *g) {

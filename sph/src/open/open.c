@@ -34,9 +34,9 @@ static int fail_create(int *failed, char *msg, size_t msglen, struct sph_open *o
 }
 
 /* Shepard sums of one point: Σ V_b w, Σ V_b w p̃_b (p_b with the hydrostatic correction),
- * Σ V_b w p_b and Σ V_b w v_b. */
+ * Σ V_b w p_b, Σ V_b w max(p̃_b, 0) and Σ V_b w v_b. */
 struct shepard {
-  double alpha, p, p_raw, u[3];
+  double alpha, p, p_raw, p_pos, u[3];
   double ztop; /* the highest of the fluid particles summed, along −g [m] */
 };
 
@@ -254,6 +254,7 @@ static void shepard_add(struct shepard *sh, const struct sph_parts *f, size_t b,
   sh->alpha += vw;
   sh->p += vw * pb;
   sh->p_raw += vw * f->p[b];
+  sh->p_pos += vw * fmax(pb, 0.0);
   for (int c = 0; c < 3; c++) sh->u[c] += vw * f->v[c][b];
 }
 
@@ -309,6 +310,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
   double level[SPH_MAX_OPEN_GROUPS];
   for (int g = 0; g < ng; g++) level[g] = -INFINITY;
   const double *up = op->src[0].up;
+  const int free_surface = up[0] != 0.0 || up[1] != 0.0 || up[2] != 0.0;
 
   /* Shepard sums, J(33–35): segments from the fluid → segment lists (which hold every fluid
    * particle within 2h of a centroid: the distance to the element is at most the distance to its
@@ -378,9 +380,11 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
         for (int c = 0; c < 3; c++) pt->u_int[k][c] = NAN;
         continue;
       }
-      /* the floor of the wall vertices: no suction from the hydrostatic extrapolation above a
-       * free surface (docs/sph-solver.md §4) */
-      pt->p_int[k] = fmax(h->p / h->alpha, fmin(h->p_raw / h->alpha, 0.0));
+      /* with gravity (a free surface carries no tension) each particle's share is clipped at 0,
+       * as in the reference implementation; without, the floor of the wall vertices: no suction
+       * from the hydrostatic extrapolation (docs/sph-solver.md §4, §10) */
+      pt->p_int[k] = free_surface ? h->p_pos / h->alpha
+                                  : fmax(h->p / h->alpha, fmin(h->p_raw / h->alpha, 0.0));
       for (int c = 0; c < 3; c++) pt->u_int[k][c] = h->u[c] / h->alpha;
       struct rmn_boundary_input *in = &pt->in[nwet];
       for (int c = 0; c < 3; c++) {
@@ -449,6 +453,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
       pk->flags[i] |= SPH_FLAG_WET;
       pk->rho[i] = r->rho;
       pk->p[i] = r->p;
+
       for (int c = 0; c < 3; c++) pk->v[c][i] = c < dim ? r->u[c] : 0.0;
       sv->mu[is_seg ? SPH_KIND_SEGMENT : SPH_KIND_VERTEX][i] = nu * r->rho;
       if (!is_seg) continue;

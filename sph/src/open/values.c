@@ -178,8 +178,8 @@ static double poiseuille_speed(const struct sph_open_source *src, double t, cons
 
 /* A wave at x: velocity (global) and gauge pressure, at the point's height clamped to
  * [bed, surface]. */
-static void wave_eval(const struct sph_open_source *src, double t, const double x[3], double *p,
-                      double u[3]) {
+static double wave_eval(const struct sph_open_source *src, double t, const double x[3], double *p,
+                        double u[3]) {
   const struct sph_open_group *g = src->group;
   const double X = dot3(x, g->direction), Y = dot3(x, src->side);
   double Z = dot3(x, src->up) - g->bed;
@@ -194,6 +194,12 @@ static void wave_eval(const struct sph_open_source *src, double t, const double 
   }
   *p = fmax(w.p, 0.0) * (Z < w.eta); /* zero on the surface (the series' residual there) */
   for (int k = 0; k < 3; k++) u[k] = w.u * g->direction[k] + w.v * src->side[k] + w.w * src->up[k];
+  return g->bed + w.eta;
+}
+
+double sph_open_source_wave(const struct sph_open_source *src, double t, const double x[3],
+                            double *p, double u[3]) {
+  return wave_eval(src, t, x, p, u);
 }
 
 void sph_open_source_eval(const struct sph_open_source *src, double t, const double x[3],

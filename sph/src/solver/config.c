@@ -253,8 +253,19 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_double(c, "fluid.xi", 7.0, 1.0, 100.0, &cfg->xi));
   TRY(cmn_case_opt_double(c, "fluid.nu", 0.0, 0.0, INFINITY, &cfg->nu));
   TRY(opt_vector(c, "gravity", dim, cfg->gravity));
-  /* initial state */
-  TRY(read_initial_fields(c, cfg, dim));
+  /* initial state: a wave (read with the open boundaries below), or the fields */
+  cfg->initial_wave = cmn_case_has(c, "initial.wave");
+  if (cfg->initial_wave) {
+    static const char *const others[] = {"initial.velocity", "initial.pressure", "initial.density",
+                                         "initial.free_surface"};
+    for (int i = 0; i < 4; i++)
+      if (cmn_case_has(c, others[i]))
+        return cmn_case_fail(c, others[i],
+                             "initial.wave gives the free surface, velocity and pressure: "
+                             "remove this key or the wave");
+  } else {
+    TRY(read_initial_fields(c, cfg, dim));
+  }
   cfg->free_surface = NAN;
   if (cmn_case_has(c, "initial.free_surface"))
     TRY(cmn_case_get_double(c, "initial.free_surface", -INFINITY, INFINITY, &cfg->free_surface));
@@ -332,6 +343,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   if (rmn_eos_init(&eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS)
     return cmn_case_fail(c, "fluid", "invalid equation of state");
   TRY(sph_open_config_read(&cfg->open, c, dim, cfg->gravity, &eos));
+  if (cfg->initial_wave)
+    TRY(sph_open_wave_read(c, "initial.wave", dim, cfg->gravity, &eos, &cfg->wave));
   return 0;
 }
 

@@ -72,9 +72,11 @@ struct profile {
   int hydrostatic;
   double gnorm, up[3], level; /* |g|, −g/|g|, the level of p = 0 along up */
   struct cmn_expr *p_expr, *rho_expr;
+  const struct sph_open_source *wave; /* initial.wave (NULL: none) */
 };
 
-static void profile_init(struct profile *pr, const struct sph_solver *sv) {
+static void profile_init(struct profile *pr, const struct sph_solver *sv,
+                         const struct sph_open_source *wave) {
   const struct sph_config *cfg = &sv->cfg;
   const struct sph_system *sys = &sv->sys;
   const struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
@@ -95,6 +97,7 @@ static void profile_init(struct profile *pr, const struct sph_solver *sv) {
   }
   pr->p_expr = compile_initial(cfg->p0_expr, "initial.pressure", sys->dim);
   pr->rho_expr = compile_initial(cfg->rho0_expr, "initial.density", sys->dim);
+  pr->wave = wave;
 }
 
 static void profile_free(struct profile *pr) {
@@ -110,6 +113,10 @@ static double profile_density(const struct profile *pr, const double *x) {
     p = sph_hydrostatic_pressure(pr->eos, pr->gnorm, fmax(depth, 0.0));
   }
   if (pr->p_expr) p = cmn_expr_eval(pr->p_expr, x);
+  if (pr->wave) {
+    double u[3];
+    sph_open_source_wave(pr->wave, 0.0, x, &p, u);
+  }
   const double pmin = rmn_eos_min_pressure(pr->eos);
   if (!(p > pmin) || !isfinite(p))
     cmn_input_error("initial.pressure: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa",
@@ -132,8 +139,8 @@ static void fluid_density(struct sph_solver *sv, const struct profile *pr) {
   }
 }
 
-/* Initial velocities (numbers or expressions of the position). */
-static void fluid_velocity(struct sph_solver *sv) {
+/* Initial velocities (numbers or expressions of the position, or the wave's). */
+static void fluid_velocity(struct sph_solver *sv, const struct sph_open_source *wave) {
   const struct sph_config *cfg = &sv->cfg;
   struct sph_system *sys = &sv->sys;
   struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
@@ -142,8 +149,13 @@ static void fluid_velocity(struct sph_solver *sv) {
     u_expr[c] = compile_initial(cfg->u0_expr[c], "initial.velocity", sys->dim);
   for (size_t a = 0; a < f->n; a++) {
     const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    double uw[3] = {0.0, 0.0, 0.0}, pw;
+    if (wave) sph_open_source_wave(wave, 0.0, x, &pw, uw);
     for (int c = 0; c < 3; c++) {
-      f->v[c][a] = c < sys->dim ? (u_expr[c] ? cmn_expr_eval(u_expr[c], x) : cfg->u0[c]) : 0.0;
+      f->v[c][a] = c >= sys->dim ? 0.0
+                   : wave        ? uw[c]
+                   : u_expr[c]   ? cmn_expr_eval(u_expr[c], x)
+                                 : cfg->u0[c];
       if (!isfinite(f->v[c][a]))
         cmn_input_error("initial.velocity[%d]: %g m/s at (%g, %g, %g) is not finite", c, f->v[c][a],
                         x[0], x[1], x[2]);
@@ -181,8 +193,31 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     cmn_error("bad EOS: rho0 = %g, c0 = %g, xi = %g", cfg->rho0, cfg->c0, cfg->xi);
 
   struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
+  /* initial.wave: the fluid below the wave's surface at t = 0 (a particle's cell centred below
+   * it), with the wave's velocity and pressure */
+  struct sph_open_source wave_src, *wave = NULL;
+  if (sv->cfg.initial_wave) {
+    char msg[512];
+    if (sph_open_source_init(&wave_src, &sv->cfg.wave, sys->dim, cfg->gravity, &sv->eos, msg,
+                             sizeof msg) != 0)
+      cmn_input_error("initial.wave: %s", msg);
+    wave = &wave_src;
+    uint8_t *drop = cmn_malloc((f->n + 1) * sizeof *drop);
+    for (size_t a = 0; a < f->n; a++) {
+      const double x[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+      double p, u[3];
+      const double top = sph_open_source_wave(wave, 0.0, x, &p, u);
+      drop[a] = !(wave_src.up[0] * x[0] + wave_src.up[1] * x[1] + wave_src.up[2] * x[2] < top);
+    }
+    sph_parts_remove(f, drop);
+    free(drop);
+    if (f->n == 0)
+      cmn_input_error(
+          "initial.wave: no fluid particle lies below the wave's surface (check "
+          "the fluid regions, the wave's bed and depth)");
+  }
   struct profile prof;
-  profile_init(&prof, sv);
+  profile_init(&prof, sv, wave);
   fluid_density(sv, &prof);
   for (int c = 0; c < 3; c++)
     for (size_t a = 0; a < f->n; a++) f->v[c][a] = 0.0;
@@ -214,7 +249,8 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     sph_solver_boundary_values(sv);
   }
   profile_free(&prof);
-  fluid_velocity(sv);
+  fluid_velocity(sv, wave);
+  if (wave) sph_open_source_free(wave);
   sph_open_mass_base(sv->open, sv); /* the wall masses, final now (docs/sph-solver.md §10) */
 
   sv->evaluated_step = -1;

@@ -437,17 +437,23 @@ static int read_value(struct cmn_case *c, const char *base, int dim, const doubl
   return 0;
 }
 
+/* The `type` of the wall a group names (geometry.walls[wall].type). */
+static int wall_type(struct cmn_case *c, const struct sph_open_group *g, const char **type) {
+  char t[96];
+  snprintf(t, sizeof t, "geometry.walls[%d].type", g->wall);
+  return cmn_case_get_string(c, t, type);
+}
+
 /* `faces: [x-, ...]` of a box or channel wall, instead of `edges`. */
 static int read_faces(struct cmn_case *c, const char *base, int dim, struct sph_open_group *g) {
   static const char *const names[] = {"x-", "x+", "y-", "y+", "z-", "z+", NULL};
-  char p[192], q[224], t[96];
+  char p[192], q[224];
   key(p, sizeof p, base, "faces");
   int n = cmn_case_seq_length(c, p);
   if (n <= 0) return n;
   if (g->nedges > 0) return cmn_case_fail(c, p, "give 'edges' or 'faces', not both");
   const char *type;
-  snprintf(t, sizeof t, "geometry.walls[%d].type", g->wall);
-  TRY(cmn_case_get_string(c, t, &type));
+  TRY(wall_type(c, g, &type));
   if (strcmp(type, "box") != 0 && strcmp(type, "channel") != 0)
     return cmn_case_fail(c, p,
                          "faces select parts of a box or channel wall; geometry.walls[%d] is "
@@ -466,7 +472,7 @@ static int read_faces(struct cmn_case *c, const char *base, int dim, struct sph_
 /* `solids: [name, ...]` of an STL wall (ASCII solids), instead of `edges`; their element ranges
  * come from the mesh (sph_open_check_mesh). */
 static int read_solids(struct cmn_case *c, const char *base, struct sph_open_group *g) {
-  char p[192], q[224], t[96];
+  char p[192], q[224];
   key(p, sizeof p, base, "solids");
   int n = cmn_case_seq_length(c, p);
   if (n <= 0) return n;
@@ -475,8 +481,7 @@ static int read_solids(struct cmn_case *c, const char *base, struct sph_open_gro
   const int max = (int)(sizeof g->solids / sizeof g->solids[0]);
   if (n > max) return cmn_case_fail(c, p, "at most %d solids", max);
   const char *type;
-  snprintf(t, sizeof t, "geometry.walls[%d].type", g->wall);
-  TRY(cmn_case_get_string(c, t, &type));
+  TRY(wall_type(c, g, &type));
   if (strcmp(type, "stl") != 0)
     return cmn_case_fail(c, p, "solids select parts of an STL wall; geometry.walls[%d] is a %s",
                          g->wall, type);

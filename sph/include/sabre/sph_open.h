@@ -251,6 +251,8 @@ struct sph_open_points {
                             measure-weighted mean of its open segments' normals in this group */
   double *measure;     /**< segment measure; 0 for vertices */
   long *element;       /**< segment: element number within its wall (0 unknown); vertex: -1 */
+  double (*zrange)[2]; /**< lowest and highest elevation along −g [m]: a segment's vertices', a
+                            vertex's own (0 without gravity); set once (fixed boundaries) */
   /* the last evaluation */
   double *alpha;      /**< Shepard sum Σ_b V_b w_b, J(34) [-] */
   double *wet;        /**< wet fraction: 1 below the local free surface (and without gravity),

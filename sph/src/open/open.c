@@ -110,6 +110,7 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
     pt->normal = cmn_calloc(n, sizeof *pt->normal);
     pt->measure = cmn_calloc(n, sizeof *pt->measure);
     pt->element = cmn_malloc(n * sizeof *pt->element);
+    pt->zrange = cmn_calloc(n, sizeof *pt->zrange);
     pt->alpha = cmn_calloc(n, sizeof *pt->alpha);
     pt->wet = cmn_calloc(n, sizeof *pt->wet);
     pt->p_int = cmn_calloc(n, sizeof *pt->p_int);
@@ -165,6 +166,20 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
     }
     rmn_params_default(&op->params[g]);
     op->params[g].shock = (enum rmn_shock_model)oc->group[g].shock;
+    /* vertical extents for the wet rule (open.c: wet_fraction) */
+    const double *up = op->src[g].up;
+    for (size_t q = 0; q < n; q++) {
+      const size_t i = pt->index[q];
+      double lo = INFINITY, hi = -INFINITY;
+      for (int d = 0; d < (q < pt->nseg ? dim : 1); d++) {
+        const size_t iv = q < pt->nseg ? sg->vertex[d][i] : i;
+        const double z = dot3((const double[3]){v->x[0][iv], v->x[1][iv], v->x[2][iv]}, up);
+        lo = fmin(lo, z);
+        hi = fmax(hi, z);
+      }
+      pt->zrange[q][0] = lo;
+      pt->zrange[q][1] = hi;
+    }
   }
   size_t nvert_open = 0;
   for (size_t i = 0; i < v->n; i++) nvert_open += op->vert_group[i] >= 0;
@@ -203,6 +218,7 @@ void sph_open_free(struct sph_open *op) {
     free(pt->p_int);
     free(pt->u_int);
     free(pt->wet);
+    free(pt->zrange);
     free(pt->value);
     free(pt->in);
     free(pt->out);
@@ -274,20 +290,12 @@ static const char *imposed_text(const struct sph_open_group *g, const struct sph
  * initial free surface and the measured depth); a vertex is wet at or below it, a segment by the
  * part of its vertical extent below it (its vertices' heights along −g). Without gravity every
  * such point is wet. */
-static double wet_fraction(const struct sph_system *s, int is_seg, size_t i, double ztop,
-                           const double *up) {
+static double wet_fraction(const struct sph_system *s, int is_seg, const double zrange[2],
+                           double ztop, const double *up) {
   if (up[0] == 0.0 && up[1] == 0.0 && up[2] == 0.0) return 1.0;
   const double level = ztop + 0.5 * s->dr;
-  const struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
-  if (!is_seg) return dot3((const double[3]){v->x[0][i], v->x[1][i], v->x[2][i]}, up) <= level;
-  const struct sph_parts *sg = &s->part[SPH_KIND_SEGMENT];
-  double lo = INFINITY, hi = -INFINITY;
-  for (int d = 0; d < s->dim; d++) {
-    const size_t iv = sg->vertex[d][i];
-    const double z = dot3((const double[3]){v->x[0][iv], v->x[1][iv], v->x[2][iv]}, up);
-    lo = fmin(lo, z);
-    hi = fmax(hi, z);
-  }
+  const double lo = zrange[0], hi = zrange[1];
+  if (!is_seg) return lo <= level;
   if (hi - lo <= 1e-9 * s->dr) return level >= lo;
   return fmin(fmax((level - lo) / (hi - lo), 0.0), 1.0);
 }
@@ -359,7 +367,7 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
     struct sph_open_points *pt = &op->pts[g];
     for (size_t k = 0; k < pt->npoints; k++) {
       const struct shepard *h = &sh[base[g] + k];
-      pt->wet[k] = h->alpha > 0.0 ? wet_fraction(s, k < pt->nseg, pt->index[k], h->ztop, up) : 0.0;
+      pt->wet[k] = h->alpha > 0.0 ? wet_fraction(s, k < pt->nseg, pt->zrange[k], h->ztop, up) : 0.0;
     }
   }
 

@@ -3,7 +3,7 @@
 #   make test   install dependencies, configure, build, run the whole ctest suite
 #   make bench  build and run the benchmarks (figures on stdout)
 #   make compare  SPH against fv1d on the 1D pipe problems of cases/compare (tables and figures)
-#   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)
+#   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build/asan/)
 #   make format / make format-check   clang-format the sources / check they are formatted
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -45,9 +45,9 @@ compare: build
 	    --output $(BUILD)/cases/compare/$$p || exit 1; done
 
 sanitize: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSABRE_SANITIZE=ON
-	cmake --build build-asan -j $(JOBS)
-	ctest --test-dir build-asan --output-on-failure -j $(JOBS) -L unit
+	cmake -S . -B $(BUILD)/asan -DCMAKE_BUILD_TYPE=Debug -DSABRE_SANITIZE=ON
+	cmake --build $(BUILD)/asan -j $(JOBS)
+	ctest --test-dir $(BUILD)/asan --output-on-failure -j $(JOBS) -L unit
 
 # clang-format (Google base, .clang-format) over every tracked C source and header.
 SOURCES = $$(git ls-files '*.c' '*.h')
@@ -58,4 +58,4 @@ format-check:
 	clang-format --dry-run --Werror $(SOURCES)
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD)

@@ -13,6 +13,7 @@ forms of read_vtu and read_csv (numpy is imported when they are called).
                                        headers (fluid_*.vtu, boundary_*.vtu) -> {name: array}
     read_pvd(path, part=None)          ParaView collection (particles.pvd) -> [(time, file)]
     used_dr(run_dir)                   geometry.dr of a run, from its used_case.yaml
+    mass_balance(run_dir)              the open boundaries' mass balance of a run, row by row
     Checks()                           the criteria of a `plot.py --check`: require(ok, what)
                                        prints one ok/FAIL line, done() exits 1 if one failed
 """
@@ -127,6 +128,27 @@ def released_rate(c, t0):
         return float("nan")
     m, tl = c["mass_released"][late], t[late]
     return float((m[-1] - m[0]) / (tl[-1] - tl[0]))
+
+
+def mass_balance(run_dir):
+    """max over the rows of |M - M(0) - sum entered + sum released| / M(0), with M the mass of
+    diagnostics.csv and entered, released the mass_entered and mass_released columns of every
+    open_<name>.csv of the run (one row with each diagnostics row): what the fluid and vertex
+    masses gained beyond what the open boundaries let in, relative (docs/sph-solver.md §10; round-off
+    when mass is conserved). None when the run has no open boundaries."""
+    import numpy as np
+    d = read_csv(os.path.join(run_dir, "diagnostics.csv"))
+    groups = [f for f in sorted(os.listdir(run_dir)) if f.startswith("open_") and f.endswith(".csv")]
+    if not groups:
+        return None
+    net = d["mass"] - d["mass"][0]
+    for f in groups:
+        c = read_csv(os.path.join(run_dir, f))
+        n = min(len(net), len(c["time"]))
+        if n < len(net) or np.any(np.abs(c["time"][:n] - d["time"][:n]) > 1e-12 * max(1.0, d["time"][-1])):
+            raise ValueError("%s: its rows are not those of diagnostics.csv" % f)
+        net = net - (c["mass_entered"] - c["mass_entered"][0]) + (c["mass_released"] - c["mass_released"][0])
+    return float(np.max(np.abs(net)) / d["mass"][0])
 
 
 def used_dr(run_dir):

@@ -190,6 +190,10 @@ static void test_parse_errors(void **state) {
          "open_boundaries[0].tangential_velocity", "whole velocity");
   EXPECT("impose: pressure, hydrostatic: {depth: deep}", "open_boundaries[0].hydrostatic.depth",
          "measured");
+  EXPECT("impose: pressure, hydrostatic: {depth: measured, absorbing: true}",
+         "open_boundaries[0].hydrostatic.absorbing", "still depth as a number");
+  EXPECT("impose: pressure, hydrostatic: {depth: 0.2, absorbing: maybe}",
+         "open_boundaries[0].hydrostatic.absorbing", "");
   EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 1, flux: 2}",
          "open_boundaries[0].poiseuille", "exactly one of 'u_max'");
   EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 25}",
@@ -751,6 +755,60 @@ static void test_solve_direct(void **state) {
   }
 }
 
+/* An absorbing hydrostatic outlet: its level is the boundary state of the shallow-water Riemann
+ * invariants, √(g d_b) = (u_out + 2√(g d_int) + 2√(g D))/4, with d_int the highest fluid particle
+ * within 2h of its segments + Δr/2 and u_out the measure-weighted mean Shepard outflow velocity of
+ * the segments that see fluid (naive sums, 1e-12); the imposed pressure is the hydrostatic one
+ * below it. Still water at the lattice's level D keeps the level D. */
+static void test_absorbing_level(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  const double g = 9.81, depth = 0.19;
+  struct sph_solver *sv =
+      box_solver("impose: pressure, hydrostatic: {depth: 0.19, absorbing: true}");
+  stir(sv, 0.05, 2e-4);
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  for (size_t a = 0; a < f->n; a++) f->v[0][a] += 0.3; /* towards the outlet */
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  assert_int_equal(sv->open->fail, 0);
+  const struct sph_open_points *pt = &sv->open->pts[0];
+  const struct sph_parts *sg = &sv->sys.part[SPH_KIND_SEGMENT];
+  double top = -INFINITY, su = 0.0, sm = 0.0;
+  for (size_t k = 0; k < pt->nseg; k++) {
+    const size_t i = pt->index[k];
+    const double x[3] = {sg->x[0][i], sg->x[1][i], sg->x[2][i]};
+    double p, u[3], alpha, ytop;
+    naive_interior(sv, x, &p, u, &alpha, &ytop);
+    if (!(alpha > 0.0)) continue;
+    top = fmax(top, ytop);
+    su -= pt->measure[k] * (u[0] * pt->normal[k][0] + u[1] * pt->normal[k][1]);
+    sm += pt->measure[k];
+  }
+  const double d_int = top + 0.5 * sv->sys.dr, u_out = su / sm;
+  const double c = 0.25 * (u_out + 2.0 * sqrt(g * d_int) + 2.0 * sqrt(g * depth));
+  const double level = c * c / g;
+  print_message("absorbing outlet: d_int %.6g m, u_out %.4g m/s, D %.3g m: level %.6g m\n", d_int,
+                u_out, depth, level);
+  assert_true(u_out > 0.25 && level > depth);
+  assert_rel(sv->open->stats[0].level, level, 1e-12);
+  size_t checked = 0;
+  for (size_t k = 0; k < pt->nseg; k++) {
+    const size_t i = pt->index[k];
+    const double dz = level - sg->x[1][i];
+    if (pt->slot[k] == (size_t)-1 || !(dz > 0.0)) continue;
+    assert_rel(pt->value[k].p, sph_hydrostatic_pressure(&sv->eos, g, dz), 1e-12);
+    checked++;
+  }
+  assert_true(checked >= 5);
+  fixture_solver_destroy(sv);
+  /* still water whose lattice holds the level D = 0.2125 m (rows to 0.2 m, + Δr/2) */
+  sv = box_solver("impose: pressure, hydrostatic: {depth: 0.2125, absorbing: true}");
+  sph_solver_evaluate(sv);
+  assert_rel(sv->open->stats[0].level, 0.2125, 1e-14);
+  fixture_solver_destroy(sv);
+}
+
 /* 3D: a box with its x+ face open at the hydrostatic pressure and the x- face at an imposed
  * velocity vector; every point's values are the direct solve of its input, and the open vertices
  * carry the imposed pressure at their own position with the face's normal. */
@@ -1200,12 +1258,19 @@ static void test_run_errors(void **state) {
 int main(void) {
   cmn_set_program_name("test_open");
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_parse),       cmocka_unit_test(test_parse_errors),
-      cmocka_unit_test(test_check_mesh),  cmocka_unit_test(test_values_2d),
-      cmocka_unit_test(test_values_3d),   cmocka_unit_test(test_solve_direct),
-      cmocka_unit_test(test_solve_3d),    cmocka_unit_test(test_linearised_exact),
-      cmocka_unit_test(test_vertex_rule), cmocka_unit_test(test_failed_solve),
-      cmocka_unit_test(test_still_water), cmocka_unit_test(test_run_errors),
+      cmocka_unit_test(test_parse),
+      cmocka_unit_test(test_parse_errors),
+      cmocka_unit_test(test_check_mesh),
+      cmocka_unit_test(test_values_2d),
+      cmocka_unit_test(test_values_3d),
+      cmocka_unit_test(test_solve_direct),
+      cmocka_unit_test(test_absorbing_level),
+      cmocka_unit_test(test_solve_3d),
+      cmocka_unit_test(test_linearised_exact),
+      cmocka_unit_test(test_vertex_rule),
+      cmocka_unit_test(test_failed_solve),
+      cmocka_unit_test(test_still_water),
+      cmocka_unit_test(test_run_errors),
       cmocka_unit_test(test_stl_solids),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -23,48 +23,12 @@ usage: make_tank_stl.py [FILE] [--tank LX,LY,LZ] [--obstacle X0,X1,Y0,Y1,HEIGHT]
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from stl_grid import breaks, face, numbers, write_stl  # noqa: E402
+
 TANK = (3.22, 1.0, 1.0)                       # tank (Kleefsman et al. 2005, Fig. 2)
 OBSTACLE = (0.6635, 0.8245, 0.2985, 0.7015, 0.161)   # x0, x1, y0, y1, height: 0.161 x 0.403 x 0.161 m
 CELL = 0.17                                   # target size of the coarse grid [m]
-
-
-def breaks(points):
-    """Sorted breakpoints through the given points, intervals cut into pieces of about CELL."""
-    out = [points[0]]
-    for a, b in zip(points[:-1], points[1:]):
-        n = max(1, round((b - a) / CELL))
-        out += [a + (b - a) * k / n for k in range(1, n)] + [b]
-    return out
-
-
-def sub(a, b):
-    return tuple(p - q for p, q in zip(a, b))
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def face(axis, level, normal, us, vs, skip=None):
-    """Triangles of the plane coordinate[axis] = level, gridded by us x vs on the two other axes
-    (in increasing axis order), oriented so that the right-hand normal is `normal` (+1/-1 along
-    axis); skip(u0, u1, v0, v1) -> True leaves a rectangle out."""
-    other = [k for k in range(3) if k != axis]
-    tris = []
-    for i in range(len(us) - 1):
-        for j in range(len(vs) - 1):
-            if skip and skip(us[i], us[i + 1], vs[j], vs[j + 1]):
-                continue
-            quad = []
-            for u, v in ((us[i], vs[j]), (us[i + 1], vs[j]), (us[i + 1], vs[j + 1]), (us[i], vs[j + 1])):
-                p = [0.0, 0.0, 0.0]
-                p[axis], p[other[0]], p[other[1]] = level, u, v
-                quad.append(tuple(p))
-            a, b, c, d = quad
-            if cross(sub(b, a), sub(c, a))[axis] * normal < 0:
-                a, b, c, d = a, d, c, b
-            tris += [(a, b, c), (a, c, d)]
-    return tris
 
 
 def surface(tank=TANK, obstacle=OBSTACLE):
@@ -72,9 +36,9 @@ def surface(tank=TANK, obstacle=OBSTACLE):
     OX, OY, OZ = obstacle[0:2], obstacle[2:4], obstacle[4]
     if not (0 < OX[0] < OX[1] < LX and 0 < OY[0] < OY[1] < LY and 0 < OZ < LZ):
         sys.exit("make_tank_stl.py: the obstacle must stand inside the tank, below its lid")
-    XS = breaks([0.0, OX[0], OX[1], LX])
-    YS = breaks([0.0, OY[0], OY[1], LY])
-    ZS = breaks([0.0, OZ, LZ])      # OZ among them keeps the grid of the side walls regular
+    XS = breaks([0.0, OX[0], OX[1], LX], CELL)
+    YS = breaks([0.0, OY[0], OY[1], LY], CELL)
+    ZS = breaks([0.0, OZ, LZ], CELL)      # OZ among them keeps the grid of the side walls regular
     eps = 1e-12
     inside = [v for v in XS if OX[0] - eps <= v <= OX[1] + eps]
     ys_o = [v for v in YS if OY[0] - eps <= v <= OY[1] + eps]
@@ -95,17 +59,6 @@ def surface(tank=TANK, obstacle=OBSTACLE):
     return tris
 
 
-def numbers(text, count, option):
-    try:
-        vals = tuple(float(v) for v in text.split(","))
-    except ValueError:
-        vals = ()
-    if len(vals) != count:
-        sys.exit("make_tank_stl.py: %s expects %d comma-separated numbers, got '%s'"
-                 % (option, count, text))
-    return vals
-
-
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     path, tank, obstacle, name = os.path.join(here, "tank.stl"), TANK, OBSTACLE, "spheric_test2"
@@ -115,28 +68,17 @@ def main():
         if arg in ("--tank", "--obstacle", "--name") and not args:
             sys.exit("make_tank_stl.py: %s needs a value" % arg)
         if arg == "--tank":
-            tank = numbers(args.pop(0), 3, arg)
+            tank = numbers(args.pop(0), 3, arg, "make_tank_stl.py")
         elif arg == "--obstacle":
-            obstacle = numbers(args.pop(0), 5, arg)
+            obstacle = numbers(args.pop(0), 5, arg, "make_tank_stl.py")
         elif arg == "--name":
             name = args.pop(0)
         elif arg.startswith("-"):
             sys.exit("make_tank_stl.py: unknown option %s" % arg)
         else:
             path = arg
-    lines = ["solid " + name]
-    for tri in surface(tank, obstacle):
-        n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))
-        norm = sum(c * c for c in n) ** 0.5
-        lines.append("  facet normal %g %g %g" % tuple(c / norm for c in n))
-        lines.append("    outer loop")
-        lines += ["      vertex %.9g %.9g %.9g" % p for p in tri]
-        lines.append("    endloop")
-        lines.append("  endfacet")
-    lines.append("endsolid " + name)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("wrote %s (%d triangles)" % (path, len(lines) // 7))
+    count = write_stl(path, [(name, surface(tank, obstacle))])
+    print("wrote %s (%d triangles)" % (path, count))
 
 
 if __name__ == "__main__":

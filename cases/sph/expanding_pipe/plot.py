@@ -38,8 +38,8 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import (Checks, read_csv, read_pvd, read_vtu, released_rate,  # noqa: E402
-                          time_mean, used_dr)
+from sabre_output import (Checks, mass_balance, read_csv, read_pvd, read_vtu,  # noqa: E402
+                          released_rate, time_mean, used_dr)
 
 G = 9.81                      # for the head only (the flow has no gravity)
 NU = 3.19e-5                  # as in case.yaml
@@ -239,6 +239,9 @@ def main():
                        tag + "head gradient of pipe 1 within 10 % of J(37)")
         checks.require(abs(r["loss"] / loss_theory() - 1) <= 0.20,
                        tag + "head loss within 20 % of J(40)")
+        balance = mass_balance(r["out"])
+        checks.require(balance <= 1e-12, tag + "mass - entered + released constant to 1e-12 (%.1e)"
+                       % balance)
     checks.done()
 
 

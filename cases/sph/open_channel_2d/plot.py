@@ -17,7 +17,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import Checks, read_csv, released_rate, time_mean, used_dr  # noqa: E402
+from sabre_output import (Checks, mass_balance, read_csv, released_rate, time_mean,  # noqa: E402
+                          used_dr)
 
 DEPTH = 0.21        # the initial free surface (top row + dr/2) and the outlet's depth [m]
 U = 0.5             # inflow speed [m/s]
@@ -95,6 +96,8 @@ def main():
     checks.require(mdev <= 0.01, "mass in the channel within 1 % over the last half")
     checks.require(cdev <= 0.02, "particle count within 2 % over the last half")
     checks.require(abs(mout / min_ - 1) <= 0.01, "mean outflow within 1 % of the inflow (mass)")
+    balance = mass_balance(out)
+    checks.require(balance <= 1e-12, "mass - entered + released constant to 1e-12 (%.1e)" % balance)
     checks.done()
 
 

@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import Checks, read_csv, used_dr  # noqa: E402
+from sabre_output import Checks, mass_balance, read_csv, used_dr  # noqa: E402
 
 DEPTH, AMPLITUDE, LENGTH = 0.5, 0.05, 2.5   # J §IV.B [m]
 
@@ -117,6 +117,11 @@ def main():
             checks.require(np.max(eps) <= dr / AMPLITUDE,
                            "%s, A/dr = %g: eps_eta <= dr/A = %.3f at every sample (largest %.4f)"
                            % (label, AMPLITUDE / dr, dr / AMPLITUDE, np.max(eps)))
+            balance = mass_balance(out)
+            if balance is not None:
+                checks.require(balance <= 1e-12,
+                               "%s, A/dr = %g: mass - entered + released constant to 1e-12 (%.1e)"
+                               % (label, AMPLITUDE / dr, balance))
     ax1.set_xlabel("t / T")
     ax1.set_ylabel(r"$\varepsilon_\eta$, J(41)")
     ax1.set_title("Free-surface error (J Fig. 8); dashed: dr/A")

@@ -118,6 +118,10 @@ struct sph_open_group {
   double depth;       /**< hydrostatic: water depth d above the bed [m] (when not measured) */
   int depth_measured; /**< hydrostatic: d measured at each evaluation (top fluid particle within
                            2h of the group's segments + Δr/2, minus `bed`) */
+  int absorbing;      /**< hydrostatic with a given depth D: the level follows the outgoing
+                           shallow-water Riemann invariant (docs/sph-solver.md §10): √(g d_b) =
+                           (u_out + 2√(g d_int) + 2√(g D))/4, d_int measured as above and u_out
+                           the group's mean interior outflow velocity of the last evaluation */
 };
 
 struct sph_open_config {
@@ -284,8 +288,11 @@ struct sph_open {
    * vertices that are not open). */
   double *mdot;  /**< ṁ_v of the last evaluation, J(15) [kg/s; 2D per unit depth] */
   double *mass0; /**< m_v^n: the vertex masses at the start of the current step [kg] */
-  double mass_step[SPH_MAX_OPEN_GROUPS]; /**< mass that entered through each group during the
-                                              last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
+  double mass_step[SPH_MAX_OPEN_GROUPS];    /**< mass that entered through each group during the
+                                                 last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
+  double mass_entered[SPH_MAX_OPEN_GROUPS]; /**< Σ mass_step since the run began: Σ ∫ mass_flux
+                                                 dt as the vertex masses took it [kg; 2D per unit
+                                                 depth] */
   int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
   /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
   double *mass_base;  /**< per vertex: its wall mass (sph_open_mass_base) [kg] */
@@ -296,7 +303,7 @@ struct sph_open {
    *  vertices took back, since the run began [kg; 2D per unit depth]: a particle leaving through
    *  an outflow vertex (ṁ_v < 0) brings that vertex's mass back towards its wall mass by the
    *  particle's barycentric weight instead of adding the particle's mass to it
-   *  (sph_open_delete_particles). Fluid + vertex masses − Σ ∫ mass_flux dt + Σ mass_released is
+   *  (sph_open_delete_particles). Fluid + vertex masses − Σ mass_entered + Σ mass_released is
    *  constant. */
   double mass_released[SPH_MAX_OPEN_GROUPS];
   /** The entered mass of inflow vertices as a layer in the pressure gradient (sph_open_layer):
@@ -425,7 +432,7 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
                                  const double xa0[3], double rho_a0, double fac);
 
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
-#define SPH_OPEN_CSV_COLUMNS 16
+#define SPH_OPEN_CSV_COLUMNS 17
 const char *const *sph_open_csv_columns(void);
 /** One row of open_<name>.csv for group g from its last stats (time given by the caller). */
 void sph_open_csv_row(const struct sph_open *op, int g, double time,

@@ -283,6 +283,11 @@ static int read_hydrostatic(struct cmn_case *c, const char *base, struct sph_ope
         c, p, "expected a depth >= 0 (m) or 'measured' (at the boundary), got '%s'", text);
   if (g->depth_measured) g->depth = NAN;
   TRY(cmn_case_opt_double(c, key(p, sizeof p, base, "bed"), 0.0, -INFINITY, INFINITY, &g->bed));
+  TRY(cmn_case_opt_bool(c, key(p, sizeof p, base, "absorbing"), 0, &g->absorbing));
+  if (g->absorbing && g->depth_measured)
+    return cmn_case_fail(c, p,
+                         "needs the still depth as a number (the level the outgoing long waves "
+                         "leave behind), not 'measured'");
   return 0;
 }
 

@@ -38,7 +38,10 @@ void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac) {
 void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt) {
   if (!op) return;
   sph_open_mass_set(op, sv, dt);
-  for (int g = 0; g < op->ngroups; g++) op->mass_step[g] = dt * op->stats[g].mass_flux;
+  for (int g = 0; g < op->ngroups; g++) {
+    op->mass_step[g] = dt * op->stats[g].mass_flux;
+    op->mass_entered[g] += op->mass_step[g];
+  }
 }
 
 double sph_open_continuity_terms(const struct sph_open *op, const struct sph_solver *sv, size_t a,

@@ -285,6 +285,20 @@ static const char *imposed_text(const struct sph_open_group *g, const struct sph
   return buf;
 }
 
+/* The level of an absorbing hydrostatic outlet (docs/sph-solver.md §10): the shallow-water
+ * Riemann invariants u ± 2√(g d) along the outward normal, the outgoing one u_out + 2√(g d_int)
+ * from the fluid (its measured level and the mean Shepard outflow velocity of the group's
+ * segments), the incoming one that of still water at the group's depth D, −2√(g D); their
+ * boundary state has √(g d_b) = (u_out + 2√(g d_int) + 2√(g D))/4. Without a measured level or
+ * velocity (no fluid near the outlet) the level is D's. */
+static double absorbing_level(const struct sph_open_group *grp, double gnorm, double level,
+                              double u_out) {
+  const double d_int = level - grp->bed;
+  if (!(d_int > 0.0) || !isfinite(u_out) || !(gnorm > 0.0)) return grp->bed + grp->depth;
+  const double c = 0.25 * (u_out + 2.0 * sqrt(gnorm * d_int) + 2.0 * sqrt(gnorm * grp->depth));
+  return grp->bed + (c > 0.0 ? c * c / gnorm : 0.0);
+}
+
 /* The wet fraction of an open point whose Shepard sum has fluid (docs/sph-solver.md §10): with
  * gravity, the local free surface is Δr/2 above the highest fluid particle of the sum (as the
  * initial free surface and the measured depth); a vertex is wet at or below it, a segment by the
@@ -356,8 +370,21 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
   }
 
   for (int g = 0; g < ng; g++) {
-    const int measured = sv->cfg.open.group[g].depth_measured;
+    const struct sph_open_group *grp = &sv->cfg.open.group[g];
+    const int measured = grp->depth_measured || grp->absorbing;
     level[g] = measured && isfinite(level[g]) ? level[g] + 0.5 * s->dr : NAN;
+    if (grp->absorbing) {
+      /* the mean Shepard outflow velocity over the group's segments that see fluid */
+      const struct sph_open_points *pt = &op->pts[g];
+      double su = 0.0, sm = 0.0;
+      for (size_t k = 0; k < pt->nseg; k++) {
+        const struct shepard *h = &sh[base[g] + k];
+        if (!(h->alpha > 0.0)) continue;
+        su -= pt->measure[k] * dot3(h->u, pt->normal[k]) / h->alpha;
+        sm += pt->measure[k];
+      }
+      level[g] = absorbing_level(grp, op->src[g].g, level[g], sm > 0.0 ? su / sm : NAN);
+    }
     op->stats[g].level = level[g];
   }
 
@@ -494,9 +521,9 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
 
 const char *const *sph_open_csv_columns(void) {
   static const char *const names[SPH_OPEN_CSV_COLUMNS] = {
-      "time",        "imposed",   "p",       "un",           "p_interior", "un_interior",
-      "volume_flux", "mass_flux", "level",   "contact",      "expansion",  "shock",
-      "dry",         "created",   "deleted", "mass_released"};
+      "time",        "imposed",   "p",       "un",           "p_interior",   "un_interior",
+      "volume_flux", "mass_flux", "level",   "contact",      "expansion",    "shock",
+      "dry",         "created",   "deleted", "mass_entered", "mass_released"};
   return names;
 }
 
@@ -518,6 +545,7 @@ void sph_open_csv_row(const struct sph_open *op, int g, double time,
                                           (double)s->ndry,
                                           (double)op->created[g],
                                           (double)op->deleted[g],
+                                          op->mass_entered[g],
                                           op->mass_released[g]};
   memcpy(row, r, sizeof r);
 }

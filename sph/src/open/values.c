@@ -177,9 +177,9 @@ static double poiseuille_speed(const struct sph_open_source *src, double t, cons
 }
 
 /* A wave at x: velocity (global) and gauge pressure, at the point's height clamped to
- * [bed, surface]. */
-static double wave_eval(const struct sph_open_source *src, double t, const double x[3], double *p,
-                        double u[3]) {
+ * [bed, surface]; returns the surface elevation (sph_open.h). */
+double sph_open_source_wave(const struct sph_open_source *src, double t, const double x[3],
+                            double *p, double u[3]) {
   const struct sph_open_group *g = src->group;
   const double X = dot3(x, g->direction), Y = dot3(x, src->side);
   double Z = dot3(x, src->up) - g->bed;
@@ -195,11 +195,6 @@ static double wave_eval(const struct sph_open_source *src, double t, const doubl
   *p = fmax(w.p, 0.0) * (Z < w.eta); /* zero on the surface (the series' residual there) */
   for (int k = 0; k < 3; k++) u[k] = w.u * g->direction[k] + w.v * src->side[k] + w.w * src->up[k];
   return g->bed + w.eta;
-}
-
-double sph_open_source_wave(const struct sph_open_source *src, double t, const double x[3],
-                            double *p, double u[3]) {
-  return wave_eval(src, t, x, p, u);
 }
 
 void sph_open_source_eval(const struct sph_open_source *src, double t, const double x[3],
@@ -236,10 +231,10 @@ void sph_open_source_eval(const struct sph_open_source *src, double t, const dou
     case SPH_OPEN_STOKES5:
     case SPH_OPEN_SOLITARY:
       is_vector = 1;
-      wave_eval(src, t, x, &scalar, vec);
+      sph_open_source_wave(src, t, x, &scalar, vec);
       break;
     case SPH_OPEN_HYDROSTATIC: {
-      const double top = g->depth_measured ? level : g->bed + g->depth;
+      const double top = g->depth_measured || g->absorbing ? level : g->bed + g->depth;
       const double d = top - dot3(x, src->up);
       scalar = isfinite(top) && d > 0.0 ? sph_hydrostatic_pressure(&src->eos, src->g, d) : 0.0;
       break;

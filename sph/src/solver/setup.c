@@ -119,8 +119,9 @@ static double profile_density(const struct profile *pr, const double *x) {
   }
   const double pmin = rmn_eos_min_pressure(pr->eos);
   if (!(p > pmin) || !isfinite(p))
-    cmn_input_error("initial.pressure: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa",
-                    p, x[0], x[1], x[2], pmin);
+    cmn_input_error("%s: %g Pa at (%g, %g, %g) is not above the EOS's minimum %g Pa",
+                    pr->wave ? "initial.wave (its pressure)" : "initial.pressure", p, x[0], x[1],
+                    x[2], pmin);
   const double rho = pr->rho_expr ? cmn_expr_eval(pr->rho_expr, x) : rmn_eos_density(pr->eos, p);
   if (!(rho > 0.0) || !isfinite(rho))
     cmn_input_error("initial.density: %g kg/m^3 at (%g, %g, %g) is not positive", rho, x[0], x[1],
@@ -157,7 +158,8 @@ static void fluid_velocity(struct sph_solver *sv, const struct sph_open_source *
                    : u_expr[c]   ? cmn_expr_eval(u_expr[c], x)
                                  : cfg->u0[c];
       if (!isfinite(f->v[c][a]))
-        cmn_input_error("initial.velocity[%d]: %g m/s at (%g, %g, %g) is not finite", c, f->v[c][a],
+        cmn_input_error("%s[%d]: %g m/s at (%g, %g, %g) is not finite",
+                        wave ? "initial.wave (its velocity)" : "initial.velocity", c, f->v[c][a],
                         x[0], x[1], x[2]);
     }
   }

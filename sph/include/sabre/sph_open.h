@@ -241,10 +241,11 @@ struct sph_open_stats {
   double volume_flux;   /**< Σ_s |s| u_n,s (> 0 into the fluid) [m^d/s; 2D per unit depth] */
   double mass_flux;     /**< Σ_s ρ_s |s| u_n,s, J(15) summed over the group's vertices (> 0 into
                              the fluid) [kg/s; 2D per unit depth] */
-  double level;         /**< measured free-surface level (hydrostatic, measured), else NaN [m] */
-  long nwave[3];        /**< segments per wave type (enum rmn_wave: contact, expansion, shock) */
-  long ndry;            /**< segments not solved (no fluid within 2h, or above the local free
-                             surface: wet fraction 0); they keep wall values */
+  double level;  /**< measured free-surface level (hydrostatic, measured), the imposed level of an
+                      absorbing hydrostatic outlet, else NaN [m] */
+  long nwave[3]; /**< segments per wave type (enum rmn_wave: contact, expansion, shock) */
+  long ndry;     /**< segments not solved (no fluid within 2h, or above the local free
+                      surface: wet fraction 0); they keep wall values */
 };
 
 /** One group's points: its segments, then its vertices. Arrays of npoints (owned). */

@@ -34,7 +34,7 @@ BOUND = 0.05                                           # reflection / A
 
 
 def probes(run):
-    """time, x and z of the pressure probes, head H_k(t) [m] and gauge levels eta_k(t) - D."""
+    """time, the pressure probes' points and their heads H_k(t) [m]."""
     pr = read_csv(os.path.join(run, "probes.csv"))
     text = open(os.path.join(run, "used_case.yaml")).read()
     block = text[text.index("pressure:", text.index("probes:")):]
@@ -46,8 +46,7 @@ def probes(run):
         pts.append([float(v) for v in line[3:line.index("]")].split(",")])
     t = pr["time"]
     heads = [pr["p%d" % k] / (RHO0 * G) + pts[k][2] - DEPTH for k in range(len(pts))]
-    gauges = [pr["eta%d" % k] - DEPTH for k in range(len(pts)) if "eta%d" % k in pr]
-    return t, pts, heads, gauges
+    return t, pts, heads
 
 
 def window_end(long_run, x_probe):
@@ -61,11 +60,10 @@ def window_end(long_run, x_probe):
     return t_seen + (LONG - x_probe) / np.sqrt(G * (DEPTH - SHELF + AMPLITUDE))
 
 
-def reflection(run, long_run):
+def reflection(t, pts, h, long_run):
     """R = max |H_case - H_long| / A over the reflection probes and their windows, with the time
-    and probe where it occurs."""
-    t, pts, h, _ = probes(run)
-    tl, _, hl, _ = probes(long_run)
+    and probe where it occurs (t, pts, h: the case's probes)."""
+    tl, _, hl = probes(long_run)
     worst = (0.0, 0.0, 0)
     for k in REFLECTION_PROBES:
         tw = min(window_end(long_run, pts[k][0]), t[-1], tl[-1])
@@ -105,7 +103,7 @@ def main():
     run = args[0]
     long_run = sys.argv[sys.argv.index("--reference") + 1] if "--reference" in sys.argv else None
     dr = used_dr(run)
-    t, pts, heads, gauges = probes(run)
+    t, pts, heads = probes(run)
 
     fig = plt.figure(figsize=(13, 10))
     views = [fig.add_subplot(4, 3, i + 1) for i in range(6)]
@@ -120,12 +118,12 @@ def main():
     ax = fig.add_subplot(4, 1, 4)
     R = None
     if long_run and os.path.exists(os.path.join(long_run, "probes.csv")):
-        tl, _, hl, _ = probes(long_run)
+        tl, _, hl = probes(long_run)
         for k in REFLECTION_PROBES:
             ax.plot(t, heads[k] / AMPLITUDE, lw=1, label="case, x = %.2f m" % pts[k][0])
             ax.plot(tl, hl[k] / AMPLITUDE, "--", lw=1, label="long channel, x = %.2f m" % pts[k][0])
             ax.axvline(window_end(long_run, pts[k][0]), color="grey", lw=0.5)
-        R = reflection(run, long_run)
+        R = reflection(t, pts, heads, long_run)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("head / A")
     if R is not None:

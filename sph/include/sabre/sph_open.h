@@ -121,7 +121,8 @@ struct sph_open_group {
   int absorbing;      /**< hydrostatic with a given depth D: the level follows the outgoing
                            shallow-water Riemann invariant (docs/sph-solver.md §10): √(g d_b) =
                            (u_out + 2√(g d_int) + 2√(g D))/4, d_int measured as above and u_out
-                           the group's mean interior outflow velocity of the last evaluation */
+                           the mean Shepard outflow velocity of the group's segments that see
+                           fluid, both of the same evaluation */
 };
 
 struct sph_open_config {

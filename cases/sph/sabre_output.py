@@ -114,11 +114,12 @@ def time_mean(t, y, t0):
     return float(np.sum(w * y) / np.sum(w)) if np.sum(w) > 0 else float("nan")
 
 
-def released_rate(c, t0):
-    """The rate [kg/s, 2D per unit depth] at which an open_<name>.csv group's deleted particles
-    took mass out beyond what its outflow vertices took back (its mass_released column, cumulative)
-    over the rows with t >= t0: what adds to its -mass_flux to make the mass that left
-    (docs/sph-solver.md §10); 0 for a CSV without the column, nan for fewer than two rows."""
+def beyond_flux_rate(c, t0):
+    """The rate [kg/s, 2D per unit depth] that adds to an open_<name>.csv group's -mass_flux to
+    make the mass that left through it, over the rows with t >= t0: what its deleted particles took
+    out beyond what its outflow vertices took back (mass_released, cumulative) less the outflow
+    its vertices did not take, being at their floor (mass_withheld, cumulative; docs/sph-solver.md
+    §10); 0 for a CSV without those columns, nan for fewer than two rows."""
     import numpy as np
     if "mass_released" not in c:
         return 0.0
@@ -126,7 +127,10 @@ def released_rate(c, t0):
     late = t >= t0
     if np.count_nonzero(late) < 2:
         return float("nan")
-    m, tl = c["mass_released"][late], t[late]
+    m = c["mass_released"][late]
+    if "mass_withheld" in c:
+        m = m - c["mass_withheld"][late]
+    tl = t[late]
     return float((m[-1] - m[0]) / (tl[-1] - tl[0]))
 
 

@@ -194,6 +194,10 @@ static void test_parse_errors(void **state) {
          "open_boundaries[0].hydrostatic.absorbing", "still depth as a number");
   EXPECT("impose: pressure, hydrostatic: {depth: 0.2, absorbing: maybe}",
          "open_boundaries[0].hydrostatic.absorbing", "");
+  EXPECT("impose: pressure, pressure: 0, outflow_deficit: -0.5",
+         "open_boundaries[0].outflow_deficit", "");
+  EXPECT("impose: pressure, pressure: 0, outflow_deficit: lots",
+         "open_boundaries[0].outflow_deficit", "");
   EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 1, flux: 2}",
          "open_boundaries[0].poiseuille", "exactly one of 'u_max'");
   EXPECT("impose: velocity, poiseuille: {center: [1, 0.25], radius: 0.25, u_max: 25}",

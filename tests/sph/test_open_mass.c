@@ -133,6 +133,66 @@ static void test_vertex_mass_hand(void **state) {
   fixture_solver_destroy(sv);
 }
 
+/* The floor of an outflow vertex's mass (sph_open_mass_set, outflow_deficit = 0.5 here): a vertex
+ * the flux would take below m_base − 0.5 m_ref stops there, one already below it stays where it is
+ * (never raised), one above it and inflow vertices follow J(14); the step's entered mass is the
+ * vertices' change (Δt Σ ṁ less what the floor held back), and that is mass_withheld. */
+static void test_outflow_floor(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_solver *sv = box_solver("impose: pressure, pressure: 0, outflow_deficit: 0.5");
+  struct sph_open *op = sv->open;
+  sph_solver_evaluate(sv);
+  struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  const double m_ref = 1000.0 * 0.025 * 0.025, dt = 1e-3;
+  assert_true(sv->cfg.open.group[0].outflow_deficit == 0.5);
+  size_t iv[4], nv = 0;
+  for (size_t i = 0; i < v->n; i++) {
+    if (op->vert_group[i] < 0) continue;
+    op->mdot[i] = 0.0;
+    op->mass0[i] = v->mass[i] = op->mass_base[i];
+    if (!(v->flags[i] & SPH_FLAG_CORNER) && nv < 4) iv[nv++] = i;
+  }
+  assert_int_equal(nv, 4);
+  const double *b = op->mass_base;
+  /* 0: from −0.4 m_ref by −0.3 m_ref: held at −0.5 (0.2 m_ref held back); 1: from −0.8 m_ref
+   * (below the floor) by −0.1: stays; 2: from 0 by −0.3: follows; 3: inflow by +2 m_ref: follows */
+  const double start[4] = {-0.4, -0.8, 0.0, 0.0}, change[4] = {-0.3, -0.1, -0.3, 2.0};
+  double flux = 0.0;
+  for (int k = 0; k < 4; k++) {
+    op->mass0[iv[k]] = b[iv[k]] + start[k] * m_ref;
+    op->mdot[iv[k]] = change[k] * m_ref / dt;
+    flux += op->mdot[iv[k]];
+  }
+  /* the predictor's half step: vertex 0 reaches its floor (−0.55 asked), 1 stays at m0 */
+  sph_open_mass_set(op, sv, 0.5 * dt);
+  assert_true(fabs(v->mass[iv[0]] - (b[iv[0]] - 0.5 * m_ref)) <= 1e-15 * m_ref);
+  assert_true(fabs(v->mass[iv[2]] - (b[iv[2]] - 0.15 * m_ref)) <= 1e-15 * m_ref);
+  assert_true(v->mass[iv[1]] == op->mass0[iv[1]]);
+  assert_true(v->mass[iv[3]] == op->mass0[iv[3]] + 0.5 * dt * op->mdot[iv[3]]);
+  op->stats[0].mass_flux = flux;
+  const double entered0 = op->mass_entered[0], withheld0 = op->mass_withheld[0];
+  sph_open_mass_end(op, sv, dt);
+  const double expect[4] = {-0.5, -0.8, -0.3, 2.0};
+  for (int k = 0; k < 4; k++)
+    assert_true(fabs(v->mass[iv[k]] - (b[iv[k]] + expect[k] * m_ref)) <= 1e-14 * m_ref);
+  const double held = 0.2 * m_ref + 0.1 * m_ref;
+  assert_true(fabs(op->mass_withheld[0] - withheld0 - held) <= 1e-14 * m_ref);
+  assert_true(fabs(op->mass_step[0] - (dt * flux + held)) <= 1e-14 * m_ref);
+  assert_true(op->mass_entered[0] - entered0 == op->mass_step[0]);
+  double change_sum = 0.0;
+  for (size_t i = 0; i < v->n; i++)
+    if (op->vert_group[i] >= 0) change_sum += v->mass[i] - op->mass0[i];
+  assert_true(fabs(change_sum - op->mass_step[0]) <= 1e-14 * m_ref);
+  double row[SPH_OPEN_CSV_COLUMNS];
+  sph_open_csv_row(op, 0, sv->time, row);
+  assert_string_equal(sph_open_csv_columns()[17], "mass_withheld");
+  assert_true(row[17] == op->mass_withheld[0]);
+  print_message("outflow floor at m_base - 0.5 m_ref: %.6g particle masses held back\n",
+                (op->mass_withheld[0] - withheld0) / m_ref);
+  fixture_solver_destroy(sv);
+}
+
 /* Run to t_end; return max |M(t) − M(0) − ∫ flux + released| / M(0) over the steps (released:
  * the mass that left with particles deleted at outflow vertices beyond what those took back),
  * with ∫ flux both the sum of the steps' mass_step and the groups' cumulative mass_entered (the
@@ -565,6 +625,7 @@ int main(void) {
       cmocka_unit_test(test_layer_hand),           cmocka_unit_test(test_io_terms),
       cmocka_unit_test(test_create_delete_hand),   cmocka_unit_test(test_through_flow),
       cmocka_unit_test(test_restart_through_flow), cmocka_unit_test(test_pressure_level),
+      cmocka_unit_test(test_outflow_floor),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

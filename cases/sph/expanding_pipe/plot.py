@@ -39,7 +39,7 @@ import yaml  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from sabre_output import (Checks, mass_balance, read_csv, read_pvd, read_vtu,  # noqa: E402
-                          released_rate, time_mean, used_dr)
+                          beyond_flux_rate, time_mean, used_dr)
 
 G = 9.81                      # for the head only (the flow has no gravity)
 NU = 3.19e-5                  # as in case.yaml
@@ -129,9 +129,10 @@ def analyse(out):
     fin = read_csv(os.path.join(out, "open_inlet.csv"))
     fout = read_csv(os.path.join(out, "open_outlet.csv"))
     # time means of the mass fluxes over the window; the outlet's with the mass its deleted
-    # particles took out beyond what its vertices took back (docs/sph-solver.md §10)
+    # particles took out beyond what its vertices took back, less what its vertices did not take
+    # (docs/sph-solver.md §10)
     qin = time_mean(fin["time"], fin["mass_flux"], T_AVG)
-    qout = -time_mean(fout["time"], fout["mass_flux"], T_AVG) + released_rate(fout, T_AVG)
+    qout = -time_mean(fout["time"], fout["mass_flux"], T_AVG) + beyond_flux_rate(fout, T_AVG)
     diag = read_csv(os.path.join(out, "diagnostics.csv"))
     wd = diag["time"] >= T_AVG
     mass = diag["mass"][wd]

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from sabre_output import (Checks, mass_balance, read_csv, released_rate, time_mean,  # noqa: E402
+from sabre_output import (Checks, mass_balance, read_csv, beyond_flux_rate, time_mean,  # noqa: E402
                           used_dr)
 
 DEPTH = 0.21        # the initial free surface (top row + dr/2) and the outlet's depth [m]
@@ -59,11 +59,12 @@ def main():
     print("  volume flux over the last half: in %.5f m^2/s, out %.5f (U (d - dr/2) = %.5f)"
           % (qin, qout, U * (DEPTH - 0.5 * dr)))
     # mass rates: the outlet's flux of J(15) plus the mass its deleted particles took out beyond
-    # what its vertices took back (mass_released, docs/sph-solver.md §10)
+    # what its vertices took back (mass_released) less what its vertices did not take
+    # (mass_withheld, docs/sph-solver.md §10)
     min_ = time_mean(fin["time"], fin["mass_flux"], half)
-    released = released_rate(fout, half)
+    released = beyond_flux_rate(fout, half)
     mout = -time_mean(fout["time"], fout["mass_flux"], half) + released
-    print("  mass flux over the last half: in %.4f kg/(m s), out %.4f (of which released %.4f)"
+    print("  mass flux over the last half: in %.4f kg/(m s), out %.4f (of which released - withheld %.4f)"
           % (min_, mout, released))
 
     fig, ax = plt.subplots(3, 1, figsize=(8, 8), sharex=True)

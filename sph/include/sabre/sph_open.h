@@ -97,6 +97,11 @@ struct sph_open_group {
   int imposed;                        /**< enum rmn_imposed */
   int source;                         /**< enum sph_open_source_kind */
   int shock; /**< enum rmn_shock_model: RMN_SHOCK_EXACT (default) or RMN_SHOCK_LINEARISED */
+  /** `outflow_deficit`: the most mass an outflow vertex may owe, in masses ρ0 Δr^d of a created
+   *  particle (default 1): its mass stays at or above its wall mass minus this, the flux it would
+   *  let out beyond that stays in the fluid (mass_withheld) and leaves with the particles that
+   *  cross (docs/sph-solver.md §10) */
+  double outflow_deficit;
   /** SPH_OPEN_VALUE: the pressure [Pa] or the normal velocity into the fluid [m/s] in expr[0]
    *  (ncomp = 1), or the velocity vector's components [m/s] in expr[0..dim-1] (ncomp = dim); each
    *  a number or an expression of t, x, y (, z). */
@@ -308,6 +313,10 @@ struct sph_open {
    *  (sph_open_delete_particles). Fluid + vertex masses − Σ mass_entered + Σ mass_released is
    *  constant. */
   double mass_released[SPH_MAX_OPEN_GROUPS];
+  /** Outflow the vertices of each group did not take since the run began, being at the floor of
+   *  their mass, m_base,v − outflow_deficit ρ0 Δr^d (sph_open_mass_set) [kg; 2D per unit depth]:
+   *  mass_entered − ∫ mass_flux dt (≥ 0). */
+  double mass_withheld[SPH_MAX_OPEN_GROUPS];
   /** The entered mass of inflow vertices as a layer in the pressure gradient (sph_open_layer):
    *  per vertex, the volume m_v/ρ_v − m_base/ρ_v taken from the vertex (0 for the others) [m^d]
    *  and where it counts instead [m]. */
@@ -370,7 +379,10 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
  * state n). sph_open_mass_set(op, sv, fac): m_v = m_v^n + fac ṁ_v with ṁ_v of the last evaluation
  * (fac = Δt/2 after the predictor's continuity: m*, ṁ^n; fac = 0 to put m^n back before the
  * corrector's continuity). sph_open_mass_end(op, sv, dt): m_v^{n+1} = m_v^n + Δt ṁ_v* (the
- * predictor's ṁ) and mass_step[g] = Δt × the group's mass flux.
+ * predictor's ṁ) and mass_step[g] = Δt × the group's mass flux. An outflow vertex (ṁ_v < 0) stops
+ * at its floor, m_base,v − outflow_deficit ρ0 Δr^d of its group (or m_v^n when that is lower
+ * already): mass_step[g] is then the vertices' actual change, Δt × the mass flux plus what the
+ * floor held back, which mass_withheld[g] adds up.
  */
 /** The wall masses of the open vertices (mass_base: the threshold of particle creation is
  *  mass_base + ρ_v Δr^d) from the store's vertex masses; sph_solver_init calls it once the
@@ -434,7 +446,7 @@ double sph_open_continuity_terms(const struct sph_open *op, const struct sph_sol
                                  const double xa0[3], double rho_a0, double fac);
 
 /** Column names of open_<name>.csv (SPH_OPEN_CSV_COLUMNS of them, static storage). */
-#define SPH_OPEN_CSV_COLUMNS 17
+#define SPH_OPEN_CSV_COLUMNS 18
 const char *const *sph_open_csv_columns(void);
 /** One row of open_<name>.csv for group g from its last stats (time given by the caller). */
 void sph_open_csv_row(const struct sph_open *op, int g, double time,

@@ -556,6 +556,8 @@ int sph_open_config_read(struct sph_open_config *oc, struct cmn_case *c, int dim
     int shock;
     TRY(cmn_case_opt_choice(c, key(p, sizeof p, base, "shock"), shocks, 0, &shock));
     g->shock = shock == 0 ? RMN_SHOCK_EXACT : RMN_SHOCK_LINEARISED;
+    TRY(cmn_case_opt_double(c, key(p, sizeof p, base, "outflow_deficit"), 1.0, 0.0, 1e6,
+                            &g->outflow_deficit));
     g->bed = 0.0;
     g->depth = NAN;
     TRY(read_value(c, base, dim, gravity, eos, g));

@@ -27,20 +27,39 @@ void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
   for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
 }
 
+/* The lowest mass open vertex i may reach by an outflow from m0, its mass at the start of the
+ * step: its wall mass less what it may owe (outflow_deficit particle masses), or m0 when below
+ * that already (a floor never raises a mass). */
+static double mass_floor(const struct sph_open *op, const struct sph_solver *sv, size_t i,
+                         double m0) {
+  const double owe =
+      sv->cfg.open.group[op->vert_group[i]].outflow_deficit * sv->cfg.rho0 * op->cell_volume;
+  return fmin(op->mass_base[i] - owe, m0);
+}
+
 void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac) {
   if (!op) return;
   struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
-  for (size_t i = 0; i < v->n; i++)
-    if (op->vert_group[i] >= 0)
-      v->mass[i] = fac != 0.0 ? op->mass0[i] + fac * op->mdot[i] : op->mass0[i];
+  for (size_t i = 0; i < v->n; i++) {
+    if (op->vert_group[i] < 0) continue;
+    const double m = fac != 0.0 ? op->mass0[i] + fac * op->mdot[i] : op->mass0[i];
+    v->mass[i] = op->mdot[i] < 0.0 ? fmax(m, mass_floor(op, sv, i, op->mass0[i])) : m;
+  }
 }
 
 void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt) {
   if (!op) return;
   sph_open_mass_set(op, sv, dt);
+  /* what the floor held back, by the group of the vertex (0 bitwise when nothing was) */
+  double held[SPH_MAX_OPEN_GROUPS] = {0.0};
+  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
+  for (size_t i = 0; i < v->n; i++)
+    if (op->vert_group[i] >= 0 && op->mdot[i] < 0.0)
+      held[op->vert_group[i]] += v->mass[i] - (op->mass0[i] + dt * op->mdot[i]);
   for (int g = 0; g < op->ngroups; g++) {
-    op->mass_step[g] = dt * op->stats[g].mass_flux;
+    op->mass_step[g] = dt * op->stats[g].mass_flux + held[g];
     op->mass_entered[g] += op->mass_step[g];
+    op->mass_withheld[g] += held[g];
   }
 }
 

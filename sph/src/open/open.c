@@ -521,9 +521,9 @@ void sph_open_boundary_values(struct sph_open *op, struct sph_solver *sv, double
 
 const char *const *sph_open_csv_columns(void) {
   static const char *const names[SPH_OPEN_CSV_COLUMNS] = {
-      "time",        "imposed",   "p",       "un",           "p_interior",   "un_interior",
-      "volume_flux", "mass_flux", "level",   "contact",      "expansion",    "shock",
-      "dry",         "created",   "deleted", "mass_entered", "mass_released"};
+      "time",        "imposed",   "p",       "un",           "p_interior",    "un_interior",
+      "volume_flux", "mass_flux", "level",   "contact",      "expansion",     "shock",
+      "dry",         "created",   "deleted", "mass_entered", "mass_released", "mass_withheld"};
   return names;
 }
 
@@ -546,6 +546,7 @@ void sph_open_csv_row(const struct sph_open *op, int g, double time,
                                           (double)op->created[g],
                                           (double)op->deleted[g],
                                           op->mass_entered[g],
-                                          op->mass_released[g]};
+                                          op->mass_released[g],
+                                          op->mass_withheld[g]};
   memcpy(row, r, sizeof r);
 }

@@ -553,6 +553,9 @@ static void test_restart_through_flow(void **state) {
   for (int g = 0; g < 2; g++) {
     assert_int_equal(a->open->created[g], b->open->created[g]);
     assert_int_equal(a->open->deleted[g], b->open->deleted[g]);
+    assert_true(a->open->mass_entered[g] == b->open->mass_entered[g] &&
+                a->open->mass_released[g] == b->open->mass_released[g] &&
+                a->open->mass_withheld[g] == b->open->mass_withheld[g]);
   }
   assert_true(a->time == b->time && a->sys.next_id == b->sys.next_id);
   fixture_solver_destroy(a);

@@ -136,7 +136,7 @@ static void test_vertex_mass_hand(void **state) {
 /* The floor of an outflow vertex's mass (sph_open_mass_set, outflow_deficit = 0.5 here): a vertex
  * the flux would take below m_base − 0.5 m_ref stops there, one already below it stays where it is
  * (never raised), one above it and inflow vertices follow J(14); the step's entered mass is the
- * vertices' change (Δt Σ ṁ less what the floor held back), and that is mass_withheld. */
+ * vertices' change (Δt Σ ṁ plus the outflow the floor held back, which mass_withheld adds up). */
 static void test_outflow_floor(void **state) {
   (void)state;
   sabre_fp_traps_on();

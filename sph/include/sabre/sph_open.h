@@ -296,7 +296,9 @@ struct sph_open {
   double *mdot;  /**< ṁ_v of the last evaluation, J(15) [kg/s; 2D per unit depth] */
   double *mass0; /**< m_v^n: the vertex masses at the start of the current step [kg] */
   double mass_step[SPH_MAX_OPEN_GROUPS];    /**< mass that entered through each group during the
-                                                 last step, Δt Σ_v ṁ_v* [kg] (> 0: inflow) */
+                                                 last step, Δt Σ_v ṁ_v* plus what the floor of
+                                                 its outflow vertices held back [kg] (> 0:
+                                                 inflow) */
   double mass_entered[SPH_MAX_OPEN_GROUPS]; /**< Σ mass_step since the run began: Σ ∫ mass_flux
                                                  dt as the vertex masses took it [kg; 2D per unit
                                                  depth] */

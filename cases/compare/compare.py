@@ -35,8 +35,9 @@ Problem keys (all required unless a default is given):
   time: end, interval       [s]; SPH writes its particles every `interval`
   compare: [t...]           compare times, each a multiple of time.interval
   jump: p, u                the scales of the L1 differences [Pa, m/s]
-  sph: dr [list], h_over_dr (2), diffusion (ferrari), open_gradient (sabre-sph's
-                            numerics.open_gradient; its default when absent)
+  sph: dr [list], h_over_dr (2), diffusion (ferrari), and sabre-sph's numerics.open_gradient,
+                            numerics.diffusion_speed and numerics.eta (their defaults when
+                            absent)
   fv1d: cells, flux (godunov), reconstruction (mc)
   reflection (optional): x_min, times, amplitude
   criteria: l1 (fraction of the jump at the finest Δr, every compare time), falling (true: the
@@ -126,8 +127,11 @@ def write_sph(prob, problem_dir, run_dir, dr):
         "time": {"end": float(prob["time"]["end"]),
                  "output_interval": float(prob["time"]["interval"])},
     }
-    if "open_gradient" in sph:
-        case["numerics"]["open_gradient"] = str(sph["open_gradient"])
+    for key in ("open_gradient", "diffusion_speed"):
+        if key in sph:
+            case["numerics"][key] = str(sph[key])
+    if "eta" in sph:
+        case["numerics"]["eta"] = float(sph["eta"])
     groups = []
     for edge, side, sign in ((1, "left", 1.0), (2, "right", -1.0)):
         end = prob[side]
@@ -245,7 +249,8 @@ def main(argv):
     if unknown:
         fail(f"{problem}: unknown key(s) {', '.join(unknown)} (expected: {', '.join(sorted(known))})")
     for key, allowed in (("criteria", {"l1", "falling", "reflection"}),
-                         ("sph", {"dr", "h_over_dr", "diffusion", "open_gradient"}),
+                         ("sph", {"dr", "h_over_dr", "diffusion", "open_gradient", "diffusion_speed",
+                                  "eta"}),
                          ("fv1d", {"cells", "flux", "reconstruction"}),
                          ("reflection", {"x_min", "times", "amplitude"})):
         extra = sorted(set(prob.get(key) or {}) - allowed)

@@ -194,6 +194,12 @@ static void test_parse_errors(void **state) {
          "open_boundaries[0].hydrostatic.absorbing", "still depth as a number");
   EXPECT("impose: pressure, hydrostatic: {depth: 0.2, absorbing: maybe}",
          "open_boundaries[0].hydrostatic.absorbing", "");
+  EXPECT("impose: pressure, hydrostatic: {depth: 0.2, current: 0.3}",
+         "open_boundaries[0].hydrostatic.current", "absorbing outlet only");
+  EXPECT("impose: pressure, hydrostatic: {depth: 0.2, absorbing: true, current: -1.5}",
+         "open_boundaries[0].hydrostatic.current", "subcritical");
+  EXPECT("impose: pressure, hydrostatic: {depth: 0.2, absorbing: true, current: fast}",
+         "open_boundaries[0].hydrostatic.current", "");
   EXPECT("impose: pressure, pressure: 0, outflow_deficit: -0.5",
          "open_boundaries[0].outflow_deficit", "");
   EXPECT("impose: pressure, pressure: 0, outflow_deficit: lots",
@@ -760,16 +766,17 @@ static void test_solve_direct(void **state) {
 }
 
 /* An absorbing hydrostatic outlet: its level is the boundary state of the shallow-water Riemann
- * invariants, √(g d_b) = (u_out + 2√(g d_int) + 2√(g D))/4, with d_int the highest fluid particle
- * within 2h of its segments + Δr/2 and u_out the measure-weighted mean Shepard outflow velocity of
- * the segments that see fluid (naive sums, 1e-12); the imposed pressure is the hydrostatic one
- * below it. Still water at the lattice's level D keeps the level D. */
+ * invariants, √(g d_b) = (u_out − U + 2√(g d_int) + 2√(g D))/4, with d_int the highest fluid
+ * particle within 2h of its segments + Δr/2, u_out the measure-weighted mean Shepard outflow
+ * velocity of the segments that see fluid (naive sums, 1e-12) and U the group's current; the
+ * imposed pressure is the hydrostatic one below it. Still water at the lattice's level D keeps the
+ * level D, and so does a uniform outflow at U under the level D with `current: U`. */
 static void test_absorbing_level(void **state) {
   (void)state;
   sabre_fp_traps_on();
-  const double g = 9.81, depth = 0.19;
+  const double g = 9.81, depth = 0.19, current = 0.12;
   struct sph_solver *sv =
-      box_solver("impose: pressure, hydrostatic: {depth: 0.19, absorbing: true}");
+      box_solver("impose: pressure, hydrostatic: {depth: 0.19, absorbing: true, current: 0.12}");
   stir(sv, 0.05, 2e-4);
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   for (size_t a = 0; a < f->n; a++) f->v[0][a] += 0.3; /* towards the outlet */
@@ -790,10 +797,11 @@ static void test_absorbing_level(void **state) {
     sm += pt->measure[k];
   }
   const double d_int = top + 0.5 * sv->sys.dr, u_out = su / sm;
-  const double c = 0.25 * (u_out + 2.0 * sqrt(g * d_int) + 2.0 * sqrt(g * depth));
+  const double c = 0.25 * (u_out - current + 2.0 * sqrt(g * d_int) + 2.0 * sqrt(g * depth));
   const double level = c * c / g;
-  print_message("absorbing outlet: d_int %.6g m, u_out %.4g m/s, D %.3g m: level %.6g m\n", d_int,
-                u_out, depth, level);
+  print_message(
+      "absorbing outlet: d_int %.6g m, u_out %.4g m/s, D %.3g m, U %.3g m/s: level %.6g m\n", d_int,
+      u_out, depth, current, level);
   assert_true(u_out > 0.25 && level > depth);
   assert_rel(sv->open->stats[0].level, level, 1e-12);
   size_t checked = 0;
@@ -808,6 +816,14 @@ static void test_absorbing_level(void **state) {
   fixture_solver_destroy(sv);
   /* still water whose lattice holds the level D = 0.2125 m (rows to 0.2 m, + Δr/2) */
   sv = box_solver("impose: pressure, hydrostatic: {depth: 0.2125, absorbing: true}");
+  sph_solver_evaluate(sv);
+  assert_rel(sv->open->stats[0].level, 0.2125, 1e-14);
+  fixture_solver_destroy(sv);
+  /* a uniform outflow at U = 0.3 m/s under that level, with current: 0.3 */
+  sv = box_solver("impose: pressure, hydrostatic: {depth: 0.2125, absorbing: true, current: 0.3}");
+  f = &sv->sys.part[SPH_KIND_FLUID];
+  for (size_t a = 0; a < f->n; a++) f->v[0][a] = 0.3;
+  sph_solver_sync(sv);
   sph_solver_evaluate(sv);
   assert_rel(sv->open->stats[0].level, 0.2125, 1e-14);
   fixture_solver_destroy(sv);

@@ -331,7 +331,9 @@ static void test_create_delete_hand(void **state) {
   assert_int_equal(f->n, n0 + 1);
   const size_t a = n0;
   assert_true(f->id[a] == id);
-  /* the centre of the entered layer: beyond the wall layer (φΔr) by Δr/2 */
+  /* the centre of the entered cell in front of the wall layer: with M(37) (this case) the fitted
+   * φΔr, not the lattice's λΔr (numerics.vertex_layer, used with the difference form) */
+  assert_true(!sv->cfg.open_gradient_difference && fabs(sv->vertex_phi - 0.5) > 0.05);
   const double off = (sv->vertex_phi + 0.5) * 0.025;
   assert_true(fabs(f->x[0][a] - (0.3 - off)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
   for (int c = 0; c < 3; c++) assert_true(f->v[c][a] == v->v[c][iv]);
@@ -617,7 +619,9 @@ static void test_pressure_level(void **state) {
   double du, dp;
   long dn;
   level_run("difference", &du, &dp, &dn);
-  assert_true(du <= 0.02 && dp <= 0.01 && dn <= 1);
+  /* measured 2.2e-4 and 2.7e-4; 1.4 % and 0.45 % while the difference form's new rows were
+   * created at (φ + 1/2)Δr, not on the lattice (docs/sph-solver.md §10) */
+  assert_true(du <= 1e-3 && dp <= 5e-4 && dn <= 1);
   level_run("symmetric", &du, &dp, &dn); /* the defect this form leaves: the test can fail */
   assert_true(du > 0.05);
 }

@@ -14,7 +14,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPT9";
+static const char magic[16] = "SABRE-SPH-CKPTA"; /* versions 1-9, then A */
 
 void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c) {
   rc->ndigest = 0;
@@ -89,13 +89,14 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
     ocount[1][g] = sv->open->deleted[g];
   }
   W(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
-  double omass[3][SPH_MAX_OPEN_GROUPS] = {{0.0}};
+  double omass[6][SPH_MAX_OPEN_GROUPS] = {{0.0}};
   for (int g = 0; sv->open && g < sv->open->ngroups; g++) {
     omass[0][g] = sv->open->mass_entered[g];
     omass[1][g] = sv->open->mass_released[g];
     omass[2][g] = sv->open->mass_withheld[g];
+    for (int k = 0; k < 3; k++) omass[3 + k][g] = sv->open->mass_comp[k][g];
   }
-  W(omass, sizeof omass[0][0], 3 * SPH_MAX_OPEN_GROUPS);
+  W(omass, sizeof omass[0][0], 6 * SPH_MAX_OPEN_GROUPS);
   int nf;
   const struct sph_field *fields = sph_parts_fields(&nf);
   for (int k = 0; k < SPH_NKINDS; k++) {
@@ -248,14 +249,15 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   {
     int64_t ocount[2][SPH_MAX_OPEN_GROUPS];
     R(ocount, sizeof ocount[0][0], 2 * SPH_MAX_OPEN_GROUPS);
-    double omass[3][SPH_MAX_OPEN_GROUPS];
-    R(omass, sizeof omass[0][0], 3 * SPH_MAX_OPEN_GROUPS);
+    double omass[6][SPH_MAX_OPEN_GROUPS];
+    R(omass, sizeof omass[0][0], 6 * SPH_MAX_OPEN_GROUPS);
     for (int g = 0; sv->open && g < sv->open->ngroups; g++) {
       sv->open->created[g] = (long)ocount[0][g];
       sv->open->deleted[g] = (long)ocount[1][g];
       sv->open->mass_entered[g] = omass[0][g];
       sv->open->mass_released[g] = omass[1][g];
       sv->open->mass_withheld[g] = omass[2][g];
+      for (int k = 0; k < 3; k++) sv->open->mass_comp[k][g] = omass[3 + k][g];
     }
   }
   int nf;

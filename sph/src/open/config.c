@@ -273,7 +273,8 @@ static int read_solitary(struct cmn_case *c, const char *base, int dim, double g
   return 0;
 }
 
-static int read_hydrostatic(struct cmn_case *c, const char *base, struct sph_open_group *g) {
+static int read_hydrostatic(struct cmn_case *c, const char *base, double gnorm,
+                            struct sph_open_group *g) {
   char p[192];
   const char *text;
   TRY(cmn_case_get_string(c, key(p, sizeof p, base, "depth"), &text));
@@ -288,6 +289,15 @@ static int read_hydrostatic(struct cmn_case *c, const char *base, struct sph_ope
     return cmn_case_fail(c, p,
                          "needs the still depth as a number (the level the outgoing long waves "
                          "leave behind), not 'measured'");
+  const char *ck = key(p, sizeof p, base, "current");
+  if (cmn_case_has(c, ck) && !g->absorbing)
+    return cmn_case_fail(c, ck,
+                         "applies to an absorbing outlet only (hydrostatic.absorbing: true)");
+  TRY(cmn_case_opt_double(c, ck, 0.0, -INFINITY, INFINITY, &g->current));
+  if (g->absorbing && !(fabs(g->current) < sqrt(gnorm * g->depth)))
+    return cmn_case_fail(c, ck,
+                         "expected a subcritical current, |U| < sqrt(g D) = %g m/s, got %g m/s",
+                         sqrt(gnorm * g->depth), g->current);
   return 0;
 }
 
@@ -420,7 +430,7 @@ static int read_value(struct cmn_case *c, const char *base, int dim, const doubl
       break;
     case 7:
       g->source = SPH_OPEN_HYDROSTATIC;
-      TRY(read_hydrostatic(c, p, g));
+      TRY(read_hydrostatic(c, p, gnorm, g));
       break;
   }
   /* The inflow's tangential velocity: from the user when the value gives none. */

@@ -21,6 +21,13 @@ void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv) {
   for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
 }
 
+/* sum += x with Kahan's compensation c (the low-order bits sum has lost). */
+static void kahan_add(double *sum, double *c, double x) {
+  const double y = x - *c, t = *sum + y;
+  *c = (t - *sum) - y;
+  *sum = t;
+}
+
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
   if (!op) return;
   const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
@@ -58,8 +65,8 @@ void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt) {
       held[op->vert_group[i]] += v->mass[i] - (op->mass0[i] + dt * op->mdot[i]);
   for (int g = 0; g < op->ngroups; g++) {
     op->mass_step[g] = dt * op->stats[g].mass_flux + held[g];
-    op->mass_entered[g] += op->mass_step[g];
-    op->mass_withheld[g] += held[g];
+    kahan_add(&op->mass_entered[g], &op->mass_comp[0][g], op->mass_step[g]);
+    kahan_add(&op->mass_withheld[g], &op->mass_comp[2][g], held[g]);
   }
 }
 
@@ -268,7 +275,7 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
       if (op->mdot[iv] < 0.0) { /* outflow: back towards the wall mass, the rest leaves */
         const double dm = w[d] * (op->mass_base[iv] - v->mass[iv]);
         v->mass[iv] += dm;
-        op->mass_released[g] += q - dm;
+        kahan_add(&op->mass_released[g], &op->mass_comp[1][g], q - dm);
       } else {
         v->mass[iv] += q; /* J(14) */
       }
@@ -289,9 +296,12 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
   if (!op) return 0;
   struct sph_system *s = &sv->sys;
   struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
-  /* the centre of the layer of fluid that has entered in front of the vertex: beyond the wall
-   * layer (φΔr thick, the vertex's own mass) by half a spacing */
-  const double offset = (sv->vertex_phi + 0.5) * s->dr;
+  /* the centre of the cell, Δr thick, in front of the layer the wall mass stands for: with the
+   * difference form the lattice's wall gap λΔr (numerics.vertex_layer), one spacing before the
+   * first row; with M(37) and its inflow layer the fitted φΔr, where that layer's centre is at one
+   * particle mass (docs/sph-solver.md §10) */
+  const double lambda = sv->cfg.open_gradient_difference ? sv->cfg.vertex_layer : sv->vertex_phi;
+  const double offset = (lambda + 0.5) * s->dr;
   size_t count = 0;
   for (size_t i = 0; i < v->n; i++) {
     const int g = op->vert_group[i];

@@ -288,14 +288,15 @@ static const char *imposed_text(const struct sph_open_group *g, const struct sph
 /* The level of an absorbing hydrostatic outlet (docs/sph-solver.md §10): the shallow-water
  * Riemann invariants u ± 2√(g d) along the outward normal, the outgoing one u_out + 2√(g d_int)
  * from the fluid (its measured level and the mean Shepard outflow velocity of the group's
- * segments), the incoming one that of still water at the group's depth D, −2√(g D); their
- * boundary state has √(g d_b) = (u_out + 2√(g d_int) + 2√(g D))/4. Without a measured level or
- * velocity (no fluid near the outlet) the level is D's. */
+ * segments), the incoming one that of the steady state at the group's depth D and outward
+ * current U, U − 2√(g D); their boundary state has √(g d_b) = (u_out − U + 2√(g d_int) +
+ * 2√(g D))/4. Without a measured level or velocity (no fluid near the outlet) the level is D's. */
 static double absorbing_level(const struct sph_open_group *grp, double gnorm, double level,
                               double u_out) {
   const double d_int = level - grp->bed;
   if (!(d_int > 0.0) || !isfinite(u_out) || !(gnorm > 0.0)) return grp->bed + grp->depth;
-  const double c = 0.25 * (u_out + 2.0 * sqrt(gnorm * d_int) + 2.0 * sqrt(gnorm * grp->depth));
+  const double c =
+      0.25 * (u_out - grp->current + 2.0 * sqrt(gnorm * d_int) + 2.0 * sqrt(gnorm * grp->depth));
   return grp->bed + (c > 0.0 ? c * c / gnorm : 0.0);
 }
 

@@ -509,9 +509,9 @@ static void test_through_flow(void **state) {
   fixture_solver_destroy(sv);
 }
 
-/* The through flow stopped by a checkpoint after 50 steps and continued to 120 steps, against
- * the same 120 steps in one go: the stores (created and deleted particles included), the vertex
- * masses and the counts agree bitwise. */
+/* The through flow stopped by a checkpoint after 130 steps (particles created and deleted by
+ * then) and continued to 200 steps, against the same 200 steps in one go: the stores (created and
+ * deleted particles included), the vertex masses, the counts and the mass ledgers agree bitwise. */
 static void test_restart_through_flow(void **state) {
   (void)state;
   sabre_fp_traps_on();
@@ -521,11 +521,13 @@ static void test_restart_through_flow(void **state) {
   const int fd = mkstemp(ck);
   assert_true(fd >= 0);
   close(fd);
-  for (int n = 0; n < 120; n++)
+  for (int n = 0; n < 200; n++)
     if (sph_solver_step(a, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
-  for (int n = 0; n < 50; n++)
+  for (int n = 0; n < 130; n++)
     if (sph_solver_step(b, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
   const long created_mid = b->open->created[0], deleted_mid = b->open->deleted[1];
+  /* the checkpoint holds created and deleted particles and a released mass */
+  assert_true(created_mid > 0 && deleted_mid > 0 && b->open->mass_released[1] != 0.0);
   struct sph_run_counters rc = {.next_output = 1.0};
   assert_int_equal(sph_checkpoint_write(b, &rc, ck), 0);
   fixture_solver_destroy(b);
@@ -534,12 +536,12 @@ static void test_restart_through_flow(void **state) {
   free(rc.output_times);
   unlink(ck);
   assert_int_equal(b->open->created[0], created_mid);
-  for (int n = 0; n < 70; n++)
+  for (int n = 0; n < 70; n++) /* to step 200 */
     if (sph_solver_step(b, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
   const struct sph_parts *fa = &a->sys.part[SPH_KIND_FLUID], *fb = &b->sys.part[SPH_KIND_FLUID];
   const struct sph_parts *va = &a->sys.part[SPH_KIND_VERTEX], *vb = &b->sys.part[SPH_KIND_VERTEX];
   print_message(
-      "checkpoint at step 50 (created %ld, deleted %ld), step 120: created %ld, deleted "
+      "checkpoint at step 130 (created %ld, deleted %ld), step 200: created %ld, deleted "
       "%ld, %zu fluid particles\n",
       created_mid, deleted_mid, a->open->created[0], a->open->deleted[1], fa->n);
   assert_true(a->open->created[0] > created_mid && a->open->deleted[1] > deleted_mid);

@@ -362,12 +362,44 @@ void sph_nlist_free(struct sph_nlist *nl) {
   memset(nl, 0, sizeof *nl);
 }
 
-/* Ascending neighbour index, for qsort: sorted rows make every sum over a row run in
+/* Rows are sorted by ascending neighbour index: sorted rows make every sum over a row run in
  * neighbour-index order, whatever the list radius or the positions at the build, so that a list
  * kept over several steps and a fresh one give the same bits. */
-static int by_index(const void *x, const void *y) {
-  const size_t a = *(const size_t *)x, b = *(const size_t *)y;
-  return (a > b) - (a < b);
+
+/* Merge the ascending runs a[0..m) and a[m..n) into out. */
+static void merge_runs(const size_t *a, size_t m, size_t n, size_t *out) {
+  size_t i = 0, j = m, k = 0;
+  while (i < m && j < n) out[k++] = a[i] < a[j] ? a[i++] : a[j++];
+  while (i < m) out[k++] = a[i++];
+  while (j < n) out[k++] = a[j++];
+}
+
+/* The n distinct indices of src in ascending order into dst (src is used as scratch): bottom-up
+ * merges of the ascending runs the traversal leaves (one per stencil cell, the cells' contents
+ * being in index order), between the two arrays. */
+static void sort_row(size_t *src, size_t n, size_t *dst) {
+  if (n == 0) return;
+  size_t *from = src, *to = dst;
+  for (;;) {
+    size_t i = 0, runs = 0;
+    while (i < n) {
+      size_t m = i + 1;
+      while (m < n && from[m - 1] < from[m]) m++;
+      size_t e = m;
+      if (m < n)
+        for (e = m + 1; e < n && from[e - 1] < from[e];) e++;
+      merge_runs(from + i, m - i, e - i, to + i);
+      runs++;
+      i = e;
+    }
+    if (runs == 1) {
+      if (to != dst) memcpy(dst, to, n * sizeof *dst);
+      return;
+    }
+    size_t *t = from;
+    from = to;
+    to = t;
+  }
 }
 
 /* The naive search visits the candidates in index order: its rows are sorted as built. */
@@ -545,17 +577,16 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   }
   for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
   nlist_reserve(nl);
-  /* Rows into place, each sorted by neighbour index (by_index). */
+  /* Rows into place, each sorted by neighbour index (sort_row). */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t ci = 0; ci < c->ncells; ci++) {
     if (startq[ci] == startq[ci + 1]) continue;
-    const size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
+    size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
     for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
       size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];
-      memcpy(nl->index + nl->offset[i], from, len * sizeof *from);
-      if (len > 1) qsort(nl->index + nl->offset[i], len, sizeof *nl->index, by_index);
+      sort_row(from, len, nl->index + nl->offset[i]);
       from += len;
     }
   }

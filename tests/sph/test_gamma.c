@@ -8,9 +8,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sabre/sph.h"
 #include "sabre/sph_walls.h"
 #include "test_gamma_ref.h"
 #include "testutil.h"
+#include "walls/gamma_impl.h"
 
 static const double H = 0.0237; /* smoothing length [m] */
 
@@ -660,6 +662,78 @@ static void test_errors(void **state) {
   expect_error(&k1, a, 1, &p);
 }
 
+/* ---- the solver's one-pass 3D pair path -------------------------------------------------- */
+
+/* sph_gamma3d_pair (the frame's axes computed once per element, then term, ∇γ_as, the distance to
+ * the triangle and to its plane from one frame) against sph_gamma_element and sph_element_distance
+ * at random points around random triangles: near the plane, beyond the support, over the
+ * interior, edges and vertices. */
+static void test_pair_path_3d(void **state) {
+  (void)state;
+  struct sabre_rng rng;
+  sabre_rng_seed(&rng, 23);
+  struct sph_kernel k;
+  sph_kernel_init(&k, 3, H);
+  double worst_term = 0.0, worst_grad = 0.0, worst_dist = 0.0, worst_off = 0.0;
+  int inside = 0, beyond = 0;
+  for (int trial = 0; trial < 400; trial++) {
+    struct sph_wall_element e;
+    double c[3];
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++) e.x[j][i] = sabre_rng_uniform(&rng, -1.5 * H, 1.5 * H);
+    double u[3], v[3];
+    for (int m = 0; m < 3; m++) {
+      u[m] = e.x[1][m] - e.x[0][m];
+      v[m] = e.x[2][m] - e.x[0][m];
+    }
+    c[0] = u[1] * v[2] - u[2] * v[1];
+    c[1] = u[2] * v[0] - u[0] * v[2];
+    c[2] = u[0] * v[1] - u[1] * v[0];
+    const double cn = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    if (cn < 0.05 * H * H) continue; /* a sliver: not what a mesh check lets through */
+    const double sgn = trial % 2 ? 1.0 : -1.0;
+    for (int i = 0; i < 3; i++) e.normal[i] = sgn * c[i] / cn;
+    struct sph_tri_axes ax;
+    sph_gamma3d_axes(&e, &ax);
+    for (int t = 0; t < 10; t++) {
+      /* a point of the triangle (barycentric, sometimes beyond an edge) lifted off its plane */
+      double b1 = sabre_rng_uniform(&rng, -0.3, 1.0), b2 = sabre_rng_uniform(&rng, -0.3, 1.0);
+      const double lift = (t % 3 == 0 ? 1e-6 : 1.0) * sabre_rng_uniform(&rng, -2.6 * H, 2.6 * H);
+      double a[3];
+      for (int i = 0; i < 3; i++)
+        a[i] = e.x[0][i] + b1 * (e.x[1][i] - e.x[0][i]) + b2 * (e.x[2][i] - e.x[0][i]) +
+               lift * e.normal[i];
+      double term, grad[3], dist, off, term0, grad0[3], q[3];
+      sph_gamma3d_pair(&k, a, &e, &ax, NULL, &term, grad, &dist, &off);
+      sph_gamma_element(&k, a, &e, &term0, grad0);
+      const double dist0 = sph_element_distance(3, (const double(*)[3])e.x, a, q);
+      double off0 = 0.0;
+      for (int i = 0; i < 3; i++) off0 += (a[i] - q[i]) * e.normal[i];
+      if (dist0 < 2.0 * H) {
+        worst_term = fmax(worst_term, fabs(term - term0));
+        for (int i = 0; i < 3; i++) worst_grad = fmax(worst_grad, H * fabs(grad[i] - grad0[i]));
+        inside++;
+      } else {
+        /* beyond the support both give exactly zero */
+        assert_true(term == 0.0 && term0 == 0.0);
+        for (int i = 0; i < 3; i++) assert_true(grad[i] == 0.0 && grad0[i] == 0.0);
+        beyond++;
+      }
+      worst_dist = fmax(worst_dist, fabs(dist - dist0) / H);
+      worst_off = fmax(worst_off, fabs(off - off0) / H);
+    }
+  }
+  printf(
+      "pair path vs element + distance: %d pairs in the support, %d beyond; |Δterm| %.1e, "
+      "h|Δgrad| %.1e, |Δdist|/h %.1e, |Δoff|/h %.1e\n",
+      inside, beyond, worst_term, worst_grad, worst_dist, worst_off);
+  assert_true(inside > 1500 && beyond > 200);
+  assert_true(worst_term <= 1e-14);
+  assert_true(worst_grad <= 1e-14);
+  assert_true(worst_dist <= 1e-14);
+  assert_true(worst_off <= 1e-14);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_far_field),
@@ -671,6 +745,7 @@ int main(void) {
       cmocka_unit_test(test_gradient_fd),
       cmocka_unit_test(test_dynamic),
       cmocka_unit_test(test_errors),
+      cmocka_unit_test(test_pair_path_3d),
   };
   return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

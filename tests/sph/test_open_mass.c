@@ -517,13 +517,14 @@ static void test_restart_through_flow(void **state) {
   sabre_fp_traps_on();
   struct sph_solver *a = fixture_solver_from_case(through_case),
                     *b = fixture_solver_from_case(through_case);
+  enum { total = 200, at = 130 }; /* steps in all, and where the checkpoint is written */
   char msg[1024], ck[] = "/tmp/sabre-test-open-ckpt-XXXXXX";
   const int fd = mkstemp(ck);
   assert_true(fd >= 0);
   close(fd);
-  for (int n = 0; n < 200; n++)
+  for (int n = 0; n < total; n++)
     if (sph_solver_step(a, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
-  for (int n = 0; n < 130; n++)
+  for (int n = 0; n < at; n++)
     if (sph_solver_step(b, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
   const long created_mid = b->open->created[0], deleted_mid = b->open->deleted[1];
   /* the checkpoint holds created and deleted particles and a released mass */
@@ -536,14 +537,14 @@ static void test_restart_through_flow(void **state) {
   free(rc.output_times);
   unlink(ck);
   assert_int_equal(b->open->created[0], created_mid);
-  for (int n = 0; n < 70; n++) /* to step 200 */
+  for (int n = at; n < total; n++)
     if (sph_solver_step(b, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
   const struct sph_parts *fa = &a->sys.part[SPH_KIND_FLUID], *fb = &b->sys.part[SPH_KIND_FLUID];
   const struct sph_parts *va = &a->sys.part[SPH_KIND_VERTEX], *vb = &b->sys.part[SPH_KIND_VERTEX];
   print_message(
-      "checkpoint at step 130 (created %ld, deleted %ld), step 200: created %ld, deleted "
+      "checkpoint at step %d (created %ld, deleted %ld), step %d: created %ld, deleted "
       "%ld, %zu fluid particles\n",
-      created_mid, deleted_mid, a->open->created[0], a->open->deleted[1], fa->n);
+      at, created_mid, deleted_mid, total, a->open->created[0], a->open->deleted[1], fa->n);
   assert_true(a->open->created[0] > created_mid && a->open->deleted[1] > deleted_mid);
   assert_int_equal(fa->n, fb->n);
   assert_memory_equal(fa->id, fb->id, fa->n * sizeof *fa->id);

@@ -42,6 +42,10 @@ extern "C" {
  * segment (S) particles within `radius` = 2h + skin, the vertex → fluid list for Shepard values,
  * and per F–S pair the wall integral ∇γ_as, J(3), and the distance from a to the segment's plane.
  */
+struct sph_tri_axes;
+struct sph_edge_link;
+struct sph_row_slot;
+
 struct sph_nbrs {
   struct sph_cells cells;
   struct sph_nlist list[SPH_NKINDS]; /**< query fluid; other = kind */
@@ -51,6 +55,13 @@ struct sph_nbrs {
   double *dist_as;                   /**< per pair: (r_a − r_s)·n_s, distance to the plane [m] */
   double *term_as;                   /**< per pair: the segment's term of γ_a (γ_a = 1 − Σ) */
   size_t cap_pairs;
+  struct sph_tri_axes *tri_axes; /**< 3D: per segment, the axes of its frame (set by the builds) */
+  size_t cap_axes;
+  struct sph_edge_link *edge_link; /**< 3D: per segment edge, its coplanar neighbour (builds) */
+  size_t cap_links;
+  struct sph_row_slot *row_slot; /**< 3D: per thread and segment, its place in the row summed */
+  size_t cap_slots, stamp;
+  size_t edges_shared; /**< 3D: edge integrals the last sph_nbrs_gamma took from a neighbour */
   /* After sph_nbrs_gamma, from the side test at those positions: */
   unsigned char *behind; /**< per fluid particle: 1 if behind its nearest wall element(s), else 0 */
   size_t cap_behind;
@@ -280,6 +291,7 @@ struct sph_solver {
   double *grad_gamma_n[3]; /**< fluid ∇γ^n (for the dynamic γ) */
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
+  double *csound;          /**< fluid sound speed c(ρ) of the forces' evaluation [m/s] */
   double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
   double *wall_flux[3];    /**< per F–S pair: viscous wall flux, M(19–20) */
   size_t cap_flux;

@@ -10,9 +10,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
+#include "walls/gamma_impl.h"
 
 static void reserve_pairs(struct sph_nbrs *nb) {
   size_t n = nb->list[SPH_KIND_SEGMENT].n;
@@ -40,6 +44,71 @@ static int empty_list(struct sph_nlist *nl, const struct sph_system *s, enum sph
   return 1;
 }
 
+/* The coplanar triangle across each edge of each triangle (3D), so that sph_nbrs_gamma computes
+ * the edge integrals of a meshed face once per particle (struct sph_edge_share). */
+struct sph_edge_link {
+  long seg;    /* the neighbour across edge i of segment j, −1 if none (or not coplanar) */
+  int edge;    /* its index of that edge */
+  double sign; /* +1 if it runs the edge in the same direction, −1 if opposite */
+};
+
+struct edge_key {
+  size_t lo, hi, id; /* the edge's vertex indices (lo < hi) and 3 × segment + edge */
+};
+
+static int edge_key_cmp(const void *x, const void *y) {
+  const struct edge_key *a = x, *b = y;
+  if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+  return a->id < b->id ? -1 : (a->id > b->id);
+}
+
+/* Two triangles sharing an edge lie in one plane when their unit normals (oriented like the
+ * elements') agree to 1e-13: the planes then differ by less than 1e-13 × the distance from the
+ * edge, round-off for the integrals. */
+static int coplanar(const struct sph_tri_axes *u, const struct sph_tri_axes *v) {
+  const double c0 = u->nu[1] * v->nu[2] - u->nu[2] * v->nu[1];
+  const double c1 = u->nu[2] * v->nu[0] - u->nu[0] * v->nu[2];
+  const double c2 = u->nu[0] * v->nu[1] - u->nu[1] * v->nu[0];
+  const double dot = u->nu[0] * v->nu[0] + u->nu[1] * v->nu[1] + u->nu[2] * v->nu[2];
+  return dot > 0.0 && c0 * c0 + c1 * c1 + c2 * c2 < 1e-26;
+}
+
+static void link_edges(struct sph_nbrs *nb, const struct sph_system *s) {
+  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
+  const size_t ne = 3 * seg->n;
+  if (ne > nb->cap_links) {
+    nb->cap_links = ne;
+    nb->edge_link = cmn_realloc(nb->edge_link, ne * sizeof *nb->edge_link);
+  }
+  for (size_t i = 0; i < ne; i++) nb->edge_link[i] = (struct sph_edge_link){-1, 0, 0.0};
+  int periodic = 0; /* across a periodic boundary a vertex stands for several images: no links */
+  for (int k = 0; k < s->domain.dim; k++) periodic |= s->domain.periodic[k];
+  if (periodic) return;
+  struct edge_key *key = cmn_malloc(ne * sizeof *key);
+  for (size_t j = 0; j < seg->n; j++)
+    for (int i = 0; i < 3; i++) {
+      const size_t u = seg->vertex[i][j], v = seg->vertex[(i + 1) % 3][j];
+      key[3 * j + i] = (struct edge_key){u < v ? u : v, u < v ? v : u, 3 * j + (size_t)i};
+    }
+  qsort(key, ne, sizeof *key, edge_key_cmp);
+  for (size_t r = 0; r < ne;) {
+    size_t end = r + 1;
+    while (end < ne && key[end].lo == key[r].lo && key[end].hi == key[r].hi) end++;
+    if (end - r == 2) { /* an edge of exactly two triangles */
+      const size_t x = key[r].id, y = key[r + 1].id, jx = x / 3, jy = y / 3;
+      const int ix = (int)(x % 3), iy = (int)(y % 3);
+      if (jx != jy && coplanar(&nb->tri_axes[jx], &nb->tri_axes[jy])) {
+        const double sign = seg->vertex[ix][jx] == seg->vertex[iy][jy] ? 1.0 : -1.0;
+        nb->edge_link[x] = (struct sph_edge_link){(long)jy, iy, sign};
+        nb->edge_link[y] = (struct sph_edge_link){(long)jx, ix, sign};
+      }
+    }
+    r = end;
+  }
+  free(key);
+}
+
 static void build(struct sph_nbrs *nb, const struct sph_system *s, double skin, int naive) {
   nb->radius = 2.0 * s->h + skin;
   if (!naive) sph_cells_build(&nb->cells, s, nb->radius);
@@ -57,6 +126,24 @@ static void build(struct sph_nbrs *nb, const struct sph_system *s, double skin, 
   else
     sph_nlist_build(&nb->vf, &nb->cells, s, SPH_KIND_VERTEX, SPH_KIND_FLUID, nb->radius);
   reserve_pairs(nb);
+  /* 3D: the triangles' frame axes, once per build (the walls do not move during a run) */
+  const struct sph_parts *seg = &s->part[SPH_KIND_SEGMENT];
+  if (s->dim == 3 && seg->n > 0) {
+    if (seg->n > nb->cap_axes) {
+      nb->cap_axes = seg->n;
+      nb->tri_axes = cmn_realloc(nb->tri_axes, seg->n * sizeof *nb->tri_axes);
+    }
+    for (size_t j = 0; j < seg->n; j++) {
+      const struct sph_parts *vx = &s->part[SPH_KIND_VERTEX];
+      const size_t iv = seg->vertex[0][j];
+      const double near[3] = {vx->x[0][iv], vx->x[1][iv], vx->x[2][iv]};
+      struct sph_wall_element e;
+      sph_segment_vertices(s, j, near, e.x);
+      for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
+      sph_gamma3d_axes(&e, &nb->tri_axes[j]);
+    }
+    link_edges(nb, s);
+  }
 }
 
 void sph_nbrs_build(struct sph_nbrs *nb, const struct sph_system *s, double skin) {
@@ -69,13 +156,18 @@ void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, doubl
 
 /* Wall data of pair p (fluid a, segment j): γ term, ∇γ_as, distance to the element and to its
  * plane (signed, > 0 on the fluid side). */
-static void pair_wall(const struct sph_system *s, const struct sph_kernel *k, size_t a, size_t j,
+static void pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
+                      const struct sph_kernel *k, size_t a, size_t j, struct sph_edge_share *sh,
                       double *term, double gs[3], double *dist, double *off) {
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *seg = &s->part[SPH_KIND_SEGMENT];
   const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
   struct sph_wall_element e;
   sph_segment_vertices(s, j, xa, e.x);
   for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
+  if (s->dim == 3) { /* one frame of the triangle for all four (the hot path of 3D runs) */
+    sph_gamma3d_pair(k, xa, &e, &nb->tri_axes[j], sh, term, gs, dist, off);
+    return;
+  }
   double q[3];
   *dist = sph_element_distance(s->dim, (const double(*)[3])e.x, xa, q);
   *off = 0.0;
@@ -113,6 +205,28 @@ static int sum_row(struct sph_nbrs *nb, struct sph_parts *f, size_t a, const dou
   return side < 0.0;
 }
 
+/* Where segment j sits in the row being summed by one thread: valid when stamp is that row's. */
+struct sph_row_slot {
+  size_t stamp, pos;
+};
+
+/* The edge values of segment j that a coplanar neighbour earlier in the row has already computed,
+ * signed for j's direction of the edge. */
+static void share_from_row(const struct sph_nbrs *nb, size_t j, size_t stamp,
+                           const struct sph_row_slot *slot, const struct sph_edge_share *row,
+                           struct sph_edge_share *sh) {
+  sh->have = 0;
+  for (int i = 0; i < 3; i++) {
+    const struct sph_edge_link *L = &nb->edge_link[3 * j + (size_t)i];
+    if (L->seg < 0 || slot[L->seg].stamp != stamp) continue;
+    const struct sph_edge_share *o = &row[slot[L->seg].pos];
+    if (!(o->got >> L->edge & 1)) continue;
+    sh->have |= 1 << i;
+    sh->value[i][0] = L->sign * o->value[L->edge][0];
+    sh->value[i][1] = L->sign * o->value[L->edge][1];
+  }
+}
+
 void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k) {
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
@@ -123,18 +237,59 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
     nb->behind = cmn_realloc(nb->behind, nb->cap_behind * sizeof *nb->behind);
   }
   unsigned char *behind = nb->behind;
+  /* 3D: per thread, the edge values of the row being summed (shared across coplanar edges) */
+  const int share = s->dim == 3 && nb->edge_link != NULL;
+  size_t maxrow = 0;
+  for (size_t a = 0; share && a < f->n; a++)
+    if (nl->offset[a + 1] - nl->offset[a] > maxrow) maxrow = nl->offset[a + 1] - nl->offset[a];
+  int nthreads = 1;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64)
+  nthreads = omp_get_max_threads();
+#endif
+  struct sph_edge_share *rows =
+      share ? cmn_malloc((maxrow + 1) * (size_t)nthreads * sizeof *rows) : NULL;
+  const size_t nseg = s->part[SPH_KIND_SEGMENT].n;
+  if (share && nseg * (size_t)nthreads > nb->cap_slots) { /* fresh slots: stamps start at 1 */
+    free(nb->row_slot);
+    nb->cap_slots = nseg * (size_t)nthreads;
+    nb->row_slot = cmn_calloc(nb->cap_slots, sizeof *nb->row_slot);
+    nb->stamp = 0;
+  }
+  const size_t base = nb->stamp; /* row a's stamp: base + a + 1, unique over the calls */
+  if (share) nb->stamp += f->n + 1;
+  size_t shared = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : shared)
 #endif
   for (size_t a = 0; a < f->n; a++) {
-    for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
+    struct sph_edge_share *row = NULL;
+    struct sph_row_slot *slot = NULL;
+    if (share) {
+      int tid = 0;
+#ifdef _OPENMP
+      tid = omp_get_thread_num();
+#endif
+      row = rows + (size_t)tid * (maxrow + 1);
+      slot = nb->row_slot + (size_t)tid * nseg;
+    }
+    const size_t first = nl->offset[a], stamp = base + a + 1;
+    for (size_t p = first; p < nl->offset[a + 1]; p++) {
+      const size_t j = nl->index[p];
       double gs[3];
-      pair_wall(s, k, a, nl->index[p], &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
+      struct sph_edge_share *sh = share ? &row[p - first] : NULL;
+      if (sh) {
+        share_from_row(nb, j, stamp, slot, row, sh);
+        slot[j] = (struct sph_row_slot){stamp, p - first};
+      }
+      pair_wall(nb, s, k, a, j, sh, &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
       for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
+      if (sh && sh->got) shared += (size_t)((sh->have & 1) + (sh->have >> 1 & 1) + (sh->have >> 2));
     }
     behind[a] = (unsigned char)sum_row(nb, f, a, dist, sph_kernel_support(k));
   }
+  free(rows);
   free(dist);
+  nb->edges_shared = shared;
   /* Every particle behind a wall is flagged; the count and the lowest index come from the flags
    * in index order, so they do not depend on the thread count. */
   nb->nescaped = 0;
@@ -179,7 +334,7 @@ void sph_nbrs_rebuild_reuse(struct sph_nbrs *nb, struct sph_system *s, const str
         for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = old_g[c][q];
       } else { /* new in the list: beyond the old radius, but computed rather than assumed */
         double gs[3], dist;
-        pair_wall(s, k, a, j, &nb->term_as[p], gs, &dist, &nb->dist_as[p]);
+        pair_wall(nb, s, k, a, j, NULL, &nb->term_as[p], gs, &dist, &nb->dist_as[p]);
         for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
       }
     }
@@ -200,5 +355,8 @@ void sph_nbrs_free(struct sph_nbrs *nb) {
   free(nb->dist_as);
   free(nb->term_as);
   free(nb->behind);
+  free(nb->tri_axes);
+  free(nb->edge_link);
+  free(nb->row_slot);
   memset(nb, 0, sizeof *nb);
 }

@@ -295,6 +295,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->rho_n);
   free(sv->gamma_n);
   free(sv->diff);
+  free(sv->csound);
   free(sv->impedance);
   free(sv->seg_group);
   free(sv->vert_group);

@@ -36,6 +36,7 @@ static void grow_arrays(struct sph_solver *sv) {
       sv->rho_n = grow(sv->rho_n, cap);
       sv->gamma_n = grow(sv->gamma_n, cap);
       sv->diff = grow(sv->diff, cap);
+      sv->csound = grow(sv->csound, cap);
       sv->impedance = grow(sv->impedance, cap);
     }
     sv->cap[k] = cap;
@@ -360,7 +361,7 @@ static double diffusion_rate(const struct sph_solver *sv, size_t a) {
   const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
   const double rho_ref = cfg->rho0, c0 = cfg->c0;
   const double rho_a = f->rho[a];
-  const double ca = rmn_eos_sound_speed(&sv->eos, rho_a);
+  const double *csound = sv->csound, ca = csound[a];
   const double K = c0 * s->dr / cfg->eta;
   double sum = 0.0;
   for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
@@ -376,15 +377,15 @@ static double diffusion_rate(const struct sph_solver *sv, size_t a) {
         slope = rho_m / (c_m * c_m);
       }
       const double varrho = rho_a - f->rho[b] - slope * g_r;
-      double cab_over_r; /* c_ab / r_ab */
+      /* m_b c_ab (r_ab/r_ab)·∇w_ab ϱ_ab/ρ_b = m_b c_ab r_ab · w'(r)/r · ϱ_ab/ρ_b */
+      double cab_r; /* c_ab r_ab */
       if (cfg->diffusion_speed == SPH_DSPEED_MAX) {
-        const double cb = rmn_eos_sound_speed(&sv->eos, f->rho[b]);
-        cab_over_r = (ca > cb ? ca : cb) / pr.dist; /* M(50) */
+        const double cb = csound[b];
+        cab_r = (ca > cb ? ca : cb) * pr.dist; /* M(50) */
       } else {
-        cab_over_r = 2.0 * K / (pr.dist * pr.dist); /* r_ab c_ab = 2K, M(52), M(48) */
+        cab_r = 2.0 * K; /* r_ab c_ab = 2K, M(52), M(48) */
       }
-      /* m_b c_ab (r_ab/r_ab)·∇w_ab ϱ_ab/ρ_b = m_b c_ab/r_ab · w'(r)/r · r² ϱ_ab/ρ_b */
-      sum += f->mass[b] * cab_over_r * pr.dwdr_over_r * pr.dist * pr.dist * varrho / f->rho[b];
+      sum += f->mass[b] * cab_r * pr.dwdr_over_r * varrho / f->rho[b];
     } else {
       /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
       const double pab =
@@ -429,6 +430,11 @@ static void forces_impl(struct sph_solver *sv) {
   /* the inflow vertices' entered mass as a layer in front of them, with M(37) (§10) */
   const int use_layer = sv->open && !sv->open_off && !sv->cfg.open_gradient_difference;
   if (use_layer) sph_open_layer(sv->open, sv);
+    /* the sound speeds of the diffusion's pairs, once per particle */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+  for (size_t a = 0; a < f->n; a++) sv->csound[a] = rmn_eos_sound_speed(&sv->eos, f->rho[a]);
   const struct sph_vertex_layer layer = {
       use_layer ? sv->open->layer_vol : NULL,
       use_layer ? (const double *const *)sv->open->layer_x : NULL};

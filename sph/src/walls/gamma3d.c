@@ -36,34 +36,47 @@ static inline void cross3(const double *u, const double *v, double *w) {
   w[2] = u[0] * v[1] - u[1] * v[0];
 }
 
-static void frame(const struct sph_wall_element *e, const double *a, struct tri_frame *f) {
-  double d1[3], d2[3], c[3], e1[3], e2[3];
+/* The part of the frame that does not depend on a. */
+void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax) {
+  double d1[3], d2[3], c[3];
   for (int i = 0; i < 3; i++) {
     d1[i] = e->x[1][i] - e->x[0][i];
     d2[i] = e->x[2][i] - e->x[0][i];
   }
   cross3(d1, d2, c);
   const double cn = sqrt(dot3(c, c));
-  f->sigma = dot3(c, e->normal) >= 0.0 ? 1.0 : -1.0;
+  ax->sigma = dot3(c, e->normal) >= 0.0 ? 1.0 : -1.0;
   const double l1 = sqrt(dot3(d1, d1));
   for (int i = 0; i < 3; i++) {
-    f->nu[i] = f->sigma * c[i] / cn;
-    e1[i] = d1[i] / l1;
+    ax->nu[i] = ax->sigma * c[i] / cn;
+    ax->e1[i] = d1[i] / l1;
   }
-  cross3(f->nu, e1, e2);
+  cross3(ax->nu, ax->e1, ax->e2);
+}
+
+static void frame_at(const struct sph_wall_element *e, const struct sph_tri_axes *ax,
+                     const double *a, struct tri_frame *f) {
+  for (int i = 0; i < 3; i++) f->nu[i] = ax->nu[i];
+  f->sigma = ax->sigma;
   /* δ from the nearest vertex: relative round-off for points close to a vertex or edge */
   double best = INFINITY;
   for (int j = 0; j < 3; j++) {
     double r[3];
     for (int i = 0; i < 3; i++) r[i] = e->x[j][i] - a[i];
-    f->p[j][0] = dot3(r, e1);
-    f->p[j][1] = dot3(r, e2);
+    f->p[j][0] = dot3(r, ax->e1);
+    f->p[j][1] = dot3(r, ax->e2);
     const double r2 = dot3(r, r);
     if (r2 < best) {
       best = r2;
-      f->delta = -dot3(r, f->nu);
+      f->delta = -dot3(r, ax->nu);
     }
   }
+}
+
+static void frame(const struct sph_wall_element *e, const double *a, struct tri_frame *f) {
+  struct sph_tri_axes ax;
+  sph_gamma3d_axes(e, &ax);
+  frame_at(e, &ax, a, f);
 }
 
 /* Per-triangle constants of the edge integrals (units of h). */
@@ -264,13 +277,15 @@ static double limit_term(const struct sph_kernel *k, const double *a,
   return side * omega / (4.0 * SPH_PI);
 }
 
-void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
-                         const struct sph_wall_element *e, const double *m, double *term,
-                         double grad[3]) {
-  struct tri_frame f;
-  frame(e, a, &f);
+/* The term and ∇γ_as of the element at a, given its frame at a. */
+static void element_in_frame(const struct sph_kernel *k, const double *a,
+                             const struct sph_wall_element *e, const struct tri_frame *fr,
+                             const double *m, struct sph_edge_share *sh, double *term,
+                             double grad[3]) {
+  const struct tri_frame f = *fr;
   grad[0] = grad[1] = grad[2] = 0.0;
   *term = 0.0;
+  if (sh) sh->got = 0;
   const double h = k->h;
   if (fabs(f.delta) >= 2.0 * h) return;
   /* On the triangle the term needs the one-sided limit; anywhere else, even 1e-13 h from its
@@ -302,7 +317,25 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   }
   double iw = 0.0, ig = 0.0;
   if (cut) {
-    for (int j = 0; j < 3; j++) edge_integrals(&t, &g[j], &iw, &ig);
+    /* Per edge, or taken from the coplanar neighbour that shares it (on the triangle itself the
+     * constants are those of δ = 0: nothing is shared). */
+    const int share = sh != NULL && !on;
+    for (int j = 0; j < 3; j++) {
+      double ew = 0.0, eg = 0.0;
+      if (share && (sh->have >> j & 1)) {
+        ew = sh->value[j][0];
+        eg = sh->value[j][1];
+      } else {
+        edge_integrals(&t, &g[j], &ew, &eg);
+      }
+      if (share) {
+        sh->value[j][0] = ew;
+        sh->value[j][1] = eg;
+      }
+      iw += ew;
+      ig += eg;
+    }
+    if (share) sh->got = 7;
   } else {
     /* No edge enters the disc: the disc is outside the triangle (exactly 0, not round-off) or
      * inside it (the whole disc), where p is on the same side of every edge (d of one sign). */
@@ -316,6 +349,49 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
   const double gw = f.sigma * SPH_WENDLAND_ALPHA3 * k->inv_h * iw;
   for (int i = 0; i < 3; i++) grad[i] = gw * e->normal[i];
   *term = on ? limit_term(k, a, e, &f, m) : f.sigma * SPH_WENDLAND_ALPHA3 * ig;
+}
+
+void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
+                         const struct sph_wall_element *e, const double *m, double *term,
+                         double grad[3]) {
+  struct tri_frame f;
+  frame(e, a, &f);
+  element_in_frame(k, a, e, &f, m, NULL, term, grad);
+}
+
+/* Squared distance from the origin to the triangle p[0..2] of the plane (orientation sigma): 0
+ * inside, else the least distance to the edges that have the origin on their outer side (the
+ * nearest point of a convex polygon lies on one of them). */
+static double plane_distance2(const double p[3][2], double sigma) {
+  double best = INFINITY;
+  for (int j = 0; j < 3; j++) {
+    const double *A = p[j], *B = p[(j + 1) % 3];
+    const double ex = B[0] - A[0], ey = B[1] - A[1];
+    const double cross = ey * A[0] - ex * A[1]; /* |e| × the distance to the edge's line */
+    if (sigma * cross >= 0.0) continue;         /* inner side (the interior is to the left) */
+    const double along = -(A[0] * ex + A[1] * ey), ee = ex * ex + ey * ey;
+    const double d2 = along <= 0.0  ? A[0] * A[0] + A[1] * A[1]
+                      : along >= ee ? B[0] * B[0] + B[1] * B[1]
+                                    : cross * cross / ee;
+    best = d2 < best ? d2 : best;
+  }
+  return best == INFINITY ? 0.0 : best;
+}
+
+void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct sph_wall_element *e,
+                      const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
+                      double grad[3], double *dist, double *off) {
+  struct tri_frame f;
+  frame_at(e, ax, a, &f);
+  *off = f.delta;
+  *dist = sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
+  if (*dist < 2.0 * k->h) {
+    element_in_frame(k, a, e, &f, NULL, sh, term, grad);
+  } else {
+    if (sh) sh->got = 0;
+    *term = 0.0;
+    grad[0] = grad[1] = grad[2] = 0.0;
+  }
 }
 
 int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,

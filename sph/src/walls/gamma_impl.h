@@ -22,6 +22,39 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
                          const struct sph_wall_element *e, const double *m, double *term,
                          double grad[3]);
 
+/* The axes of a triangle's frame, which do not depend on the point: the unit normal nu oriented
+ * like the element's normal, e1 along x1 − x0, e2 = nu × e1, sigma = +1 if (x0, x1, x2) turn
+ * counter-clockwise about nu, else −1. */
+struct sph_tri_axes {
+  double nu[3], e1[3], e2[3], sigma;
+};
+void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax);
+
+/* The edge integrals of one triangle at one point, shared with the coplanar triangle across each
+ * edge (the interior edges of a meshed face are computed once per point instead of twice). Edge
+ * i runs from x_i to x_{i+1}; its value is the pair (∫ w, γ term) of the sub-triangle (foot
+ * point, x_i, x_{i+1}) in units of h, before the triangle's orientation sign, and changes sign
+ * with the edge's direction. */
+struct sph_edge_share {
+  int have;           /**< in: bit i set if value[i] is given (the neighbour's, signed for this
+                           triangle's direction of edge i) */
+  double value[3][2]; /**< in: the given values; out: edge i's values when bit i of got is set */
+  int got;            /**< out: bits of the edges whose values are in value[] (0: none, the
+                           triangle beyond the support or treated as a whole) */
+};
+
+/*
+ * One fluid–triangle pair of the solver in one pass (3D): the term and ∇γ_as as
+ * sph_gamma3d_element with m = NULL (zero beyond the support), the distance from a to the closed
+ * triangle [m] and the signed distance from a to its plane [m] (> 0 on the side of the normal), all
+ * from one frame of the triangle at a. Agrees with sph_gamma3d_element and sph_element_distance to
+ * round-off (tests/sph/test_gamma.c). ax: sph_gamma3d_axes of e (computed once per element); sh:
+ * NULL, or the edge values shared with the coplanar neighbours (struct sph_edge_share).
+ */
+void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct sph_wall_element *e,
+                      const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
+                      double grad[3], double *dist, double *off);
+
 /*
  * Whether a lies on the closed element: within SPH_GAMMA_PLANE_TOL·h of its plane and within tol of
  * the element in that plane. If so, returns 1 and, if m is not NULL, adds weight·ν to m, ν the

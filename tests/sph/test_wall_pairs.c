@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "solver_fixture.h"
 #include "sabre/sph_walls.h"
+#include "solver_fixture.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -87,11 +87,12 @@ static void test_pairs_against_reference(void **state) {
     assert_int_equal(sph_gamma_eval(&k, xa, sg->n, all, &gamma, grad), 0);
     worst_gamma = fmax(worst_gamma, fabs(g1[a] - gamma));
   }
-  printf("%zu fluid particles, %zu segments, %zu pairs (%zu within the support), %zu edge "
-         "integrals shared; largest differences: term %.1e, h grad %.1e, plane distance/h %.1e, "
-         "gamma %.1e\n",
-         f->n, sg->n, np, in_support, nb1.edges_shared, worst_term, worst_grad, worst_off,
-         worst_gamma);
+  printf(
+      "%zu fluid particles, %zu segments, %zu pairs (%zu within the support), %zu edge "
+      "integrals shared; largest differences: term %.1e, h grad %.1e, plane distance/h %.1e, "
+      "gamma %.1e\n",
+      f->n, sg->n, np, in_support, nb1.edges_shared, worst_term, worst_grad, worst_off,
+      worst_gamma);
   /* the sharing is exercised: most triangles of a meshed face take edges from a neighbour */
   assert_true(nb1.edges_shared > in_support / 2);
   assert_true(worst_term <= 1e-13);

@@ -26,7 +26,7 @@ static double approach(const struct sph_parts *pa, size_t a, const struct sph_pa
 
 /* χ_a: the share of the wet open segments in the wall terms of a's kernel, Σ_wet |term_as| /
  * Σ_s |term_as| (0 without segments in the support). */
-static double open_share(const struct sph_op *op, size_t a) {
+double sph_op_open_share(const struct sph_op *op, size_t a) {
   const struct sph_parts *ps = &op->sys->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
   double open = 0.0, all = 0.0;
@@ -38,17 +38,21 @@ static double open_share(const struct sph_op *op, size_t a) {
   return all > 0.0 ? open / all : 0.0;
 }
 
+/* g_fluid (NULL: none): the sum over the fluid pairs already formed by the caller (same pairs,
+ * order and arithmetic); the sum then goes on over the vertices and segments only. */
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
                  int push_only, const double *impedance, int open_difference,
-                 const struct sph_vertex_layer *layer, double out[3]) {
+                 const struct sph_vertex_layer *layer, const double *g_fluid, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double rho_a = pa->rho[a], fa = f[SPH_KIND_FLUID][a];
   double g[3] = {0.0, 0.0, 0.0};
+  if (g_fluid)
+    for (int c = 0; c < 3; c++) g[c] = g_fluid[c];
   /* Near an open boundary, χ_a f_a × the zeroth-order defect is taken out of every pair:
    * (ρ_a/ρ_b)^k (f_b − χ_a f_a) + (1 − χ_a) f_a (ρ_b/ρ_a)^k (docs/sph-solver.md §10). */
-  const double chi = open_difference ? open_share(op, a) : 0.0, fc = chi * fa;
-  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+  const double chi = open_difference ? sph_op_open_share(op, a) : 0.0, fc = chi * fa;
+  for (int kind = g_fluid ? SPH_KIND_VERTEX : SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
     const struct sph_parts *pb = &s->part[kind];
     const struct sph_nlist *nl = &op->nb->list[kind];
     for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
@@ -103,13 +107,21 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 
 void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
                  double out[3]) {
-  grad(op, k, f, a, 0, NULL, 0, NULL, out);
+  grad(op, k, f, a, 0, NULL, 0, NULL, NULL, out);
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
                           size_t a, const double *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]) {
-  grad(op, k, p, a, 1, impedance, open_difference, layer, out);
+  grad(op, k, p, a, 1, impedance, open_difference, layer, NULL, out);
+}
+
+void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
+                                const double *const p[SPH_NKINDS], size_t a,
+                                const double *impedance, int open_difference,
+                                const struct sph_vertex_layer *layer, const double g_fluid[3],
+                                double out[3]) {
+  grad(op, k, p, a, 1, impedance, open_difference, layer, g_fluid, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }
@@ -150,16 +162,19 @@ double sph_op_div(const struct sph_op *op, double k, const double *const B[SPH_N
   return sum / pa->gamma[a];
 }
 
-void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+/* l_fluid (NULL: none): as g_fluid of grad(). */
+static void lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
                 const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
-                double out[3]) {
+                const double *l_fluid, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double beta_a = beta[SPH_KIND_FLUID][a];
   const double Aa[3] = {comp(A[SPH_KIND_FLUID], 0, a), comp(A[SPH_KIND_FLUID], 1, a),
                         comp(A[SPH_KIND_FLUID], 2, a)};
   double l[3] = {0.0, 0.0, 0.0};
-  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+  if (l_fluid)
+    for (int c = 0; c < 3; c++) l[c] = l_fluid[c];
+  for (int kind = l_fluid ? SPH_KIND_VERTEX : SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
     const struct sph_parts *pb = &s->part[kind];
     const struct sph_nlist *nl = &op->nb->list[kind];
     for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
@@ -186,4 +201,16 @@ void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
   }
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = l[c] * inv_gamma;
+}
+
+void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+                const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
+                double out[3]) {
+  lap(op, beta, A, wall_flux, a, NULL, out);
+}
+
+void sph_op_lap_walls(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+                      const double *const A[SPH_NKINDS][3], const double *const wall_flux[3],
+                      size_t a, const double l_fluid[3], double out[3]) {
+  lap(op, beta, A, wall_flux, a, l_fluid, out);
 }

@@ -50,4 +50,24 @@ void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const
                           size_t a, const double *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]);
 
+/* χ_a of open_difference above. */
+double sph_op_open_share(const struct sph_op *op, size_t a);
+
+/*
+ * The momentum equation's pair loops fused (solver.c): the caller sums the fluid pairs of a in one
+ * pass over its fluid neighbours, in the list's order and with the arithmetic of
+ * sph_op_grad_pressure and sph_op_lap (for a fluid pair: (ρ_a/ρ_b)^k p_b + p_a/(ρ_a/ρ_b)^k less
+ * χ_a p_a ((ρ_a/ρ_b)^k + (ρ_b/ρ_a)^k), times V_b w'(r)/r r_ab; and V_b 2 β̄_ab w'(r)/r (A_a − A_b),
+ * pairs at r = 0 left out), and these go on from that sum over the vertices and segments: the
+ * result is bitwise that of the unfused operators (tests/sph/test_solver.c).
+ */
+void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
+                                const double *const p[SPH_NKINDS], size_t a,
+                                const double *impedance, int open_difference,
+                                const struct sph_vertex_layer *layer, const double g_fluid[3],
+                                double out[3]);
+void sph_op_lap_walls(const struct sph_op *op, const double *const beta[SPH_NKINDS],
+                      const double *const A[SPH_NKINDS][3], const double *const wall_flux[3],
+                      size_t a, const double l_fluid[3], double out[3]);
+
 #endif

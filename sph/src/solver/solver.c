@@ -351,51 +351,74 @@ static void boundary_values_impl(struct sph_solver *sv) {
 
 /* ------------------------------------------------------------------------------------------- */
 
-/* Volume-diffusion rate D_a = d(γ_a ρ_a)/dt of M(84) (Ferrari/η) or the Brezzi-type term. */
-static double diffusion_rate(const struct sph_solver *sv, size_t a) {
+/* One fluid pair's term of the volume-diffusion rate D_a = d(γ_a ρ_a)/dt of M(84) (Ferrari/η) or
+ * of the Brezzi-type term (before its factor Λ), pr the pair's geometry (r_ab ≠ 0). */
+static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
+                             const struct sph_pair *pr) {
   const struct sph_config *cfg = &sv->cfg;
-  if (cfg->diffusion == SPH_DIFFUSION_NONE) return 0.0;
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
+  const double rho_ref = cfg->rho0, c0 = cfg->c0, rho_a = f->rho[a];
+  const double g_r = gcorr * dot3(cfg->gravity, pr->r); /* g·r_ab */
+  if (cfg->diffusion == SPH_DIFFUSION_FERRARI) {
+    /* ϱ_ab = ρ_a − ρ_b − ρ0/c0² g·r_ab, M(81) (with g = −g e_z: the paper's form). */
+    double slope = rho_ref / (c0 * c0); /* dρ/dp of M(81) */
+    if (cfg->gravity_correction == 2) {
+      const double rho_m = 0.5 * (rho_a + f->rho[b]), c_m = rmn_eos_sound_speed(&sv->eos, rho_m);
+      slope = rho_m / (c_m * c_m);
+    }
+    const double varrho = rho_a - f->rho[b] - slope * g_r;
+    /* m_b c_ab (r_ab/r_ab)·∇w_ab ϱ_ab/ρ_b = m_b c_ab r_ab · w'(r)/r · ϱ_ab/ρ_b */
+    double cab_r; /* c_ab r_ab */
+    if (cfg->diffusion_speed == SPH_DSPEED_MAX) {
+      const double ca = sv->csound[a], cb = sv->csound[b];
+      cab_r = (ca > cb ? ca : cb) * pr->dist; /* M(50) */
+    } else {
+      cab_r = 2.0 * (c0 * sv->sys.dr / cfg->eta); /* r_ab c_ab = 2K, K = c0 Δr/η, M(52), M(48) */
+    }
+    return f->mass[b] * cab_r * pr->dwdr_over_r * varrho / f->rho[b];
+  }
+  /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
+  const double pab = f->p[a] - f->p[b] - rho_ref * g_r;
+  return f->mass[b] / f->rho[b] * 2.0 * pab * pr->dwdr_over_r;
+}
+
+/* The fluid pairs of a in one pass (their geometry evaluated once): the pressure gradient's sum
+ * g, the viscous Laplacian's sum l (if viscous) and the diffusion rate (if any), in the list's
+ * order and with the arithmetic of sph_op_grad_pressure and sph_op_lap, which then go on over the
+ * vertices and segments (operators/pressure.h). */
+static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int viscous,
+                          double g[3], double l[3]) {
   const struct sph_system *s = &sv->sys;
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
-  const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
-  const double rho_ref = cfg->rho0, c0 = cfg->c0;
-  const double rho_a = f->rho[a];
-  const double *csound = sv->csound, ca = csound[a];
-  const double K = c0 * s->dr / cfg->eta;
-  double sum = 0.0;
+  const double k = sv->cfg.grad_k, rho_a = f->rho[a], pa = f->p[a];
+  const double *mu = sv->mu[SPH_KIND_FLUID], mu_a = mu[a];
+  const int diffusion = sv->cfg.diffusion != SPH_DIFFUSION_NONE;
+  double dsum = 0.0;
+  for (int c = 0; c < 3; c++) g[c] = l[c] = 0.0;
   for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-    size_t b = nl->index[q];
+    const size_t b = nl->index[q];
     struct sph_pair pr;
-    if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr) || pr.dist == 0.0) continue;
-    const double g_r = gcorr * dot3(cfg->gravity, pr.r); /* g·r_ab */
-    if (cfg->diffusion == SPH_DIFFUSION_FERRARI) {
-      /* ϱ_ab = ρ_a − ρ_b − ρ0/c0² g·r_ab, M(81) (with g = −g e_z: the paper's form). */
-      double slope = rho_ref / (c0 * c0); /* dρ/dp of M(81) */
-      if (cfg->gravity_correction == 2) {
-        const double rho_m = 0.5 * (rho_a + f->rho[b]), c_m = rmn_eos_sound_speed(&sv->eos, rho_m);
-        slope = rho_m / (c_m * c_m);
-      }
-      const double varrho = rho_a - f->rho[b] - slope * g_r;
-      /* m_b c_ab (r_ab/r_ab)·∇w_ab ϱ_ab/ρ_b = m_b c_ab r_ab · w'(r)/r · ϱ_ab/ρ_b */
-      double cab_r; /* c_ab r_ab */
-      if (cfg->diffusion_speed == SPH_DSPEED_MAX) {
-        const double cb = csound[b];
-        cab_r = (ca > cb ? ca : cb) * pr.dist; /* M(50) */
-      } else {
-        cab_r = 2.0 * K; /* r_ab c_ab = 2K, M(52), M(48) */
-      }
-      sum += f->mass[b] * cab_r * pr.dwdr_over_r * varrho / f->rho[b];
-    } else {
-      /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
-      const double pab =
-          s->part[SPH_KIND_FLUID].p[a] - s->part[SPH_KIND_FLUID].p[b] - rho_ref * g_r;
-      sum += f->mass[b] / f->rho[b] * 2.0 * pab * pr.dwdr_over_r;
+    if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr)) continue;
+    const double rho_b = f->rho[b], vb = f->mass[b] / rho_b;
+    const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
+    double sum = ratio * f->p[b] + pa / ratio;
+    if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
+    const double t = vb * sum * pr.dwdr_over_r;
+    for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
+    if (pr.dist == 0.0) continue;
+    if (viscous) {
+      const double bsum = mu_a + mu[b];
+      const double bbar = bsum > 0.0 ? 2.0 * mu_a * mu[b] / bsum : 0.0; /* J(9) */
+      const double tl = f->mass[b] / rho_b * 2.0 * bbar * pr.dwdr_over_r;
+      for (int c = 0; c < 3; c++) l[c] += tl * (f->v[c][a] - f->v[c][b]);
     }
+    if (diffusion) dsum += diffusion_pair(sv, a, b, &pr);
   }
   /* The Brezzi-type term takes its time scale Δt in continuity(). */
-  if (cfg->diffusion == SPH_DIFFUSION_BREZZI) sum *= cfg->brezzi_lambda;
-  return sum;
+  if (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI) dsum *= sv->cfg.brezzi_lambda;
+  return dsum;
 }
 
 static void forces_impl(struct sph_solver *sv) {
@@ -447,14 +470,17 @@ static void forces_impl(struct sph_solver *sv) {
       sv->diff[a] = 0.0;
       continue;
     }
-    double gp[3], lap[3] = {0.0, 0.0, 0.0};
+    double gp[3], lap[3] = {0.0, 0.0, 0.0}, gf[3], lf[3];
+    const int diffo = sv->cfg.open_gradient_difference;
+    const double fc = diffo ? sph_op_open_share(&op, a) * pk[SPH_KIND_FLUID][a] : 0.0;
+    sv->diff[a] = fluid_pairs(sv, a, fc, viscous, gf, lf);
     /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
-    sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
-                         sv->cfg.open_gradient_difference, use_layer ? &layer : NULL, gp);
-    if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
+    sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a,
+                               sv->cfg.wall_impedance ? sv->impedance : NULL, diffo,
+                               use_layer ? &layer : NULL, gf, gp);
+    if (viscous) sph_op_lap_walls(&op, muk, (const double *const(*)[3])vel, flux, a, lf, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];
-    sv->diff[a] = diffusion_rate(sv, a);
   }
 }
 

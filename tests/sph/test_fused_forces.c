@@ -1,0 +1,91 @@
+/* The momentum equation's fluid pairs fused into one pass (solver.c, operators/pressure.h) give
+ * bitwise the accelerations of the operators called one after the other,
+ * sph_op_grad_pressure and sph_op_lap: a 3D tank with viscosity, volume diffusion and the wall
+ * impedance, particles off the lattice and moving; a 2D through-flow with the difference form next
+ * to its open boundaries. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "operators/pressure.h"
+#include "solver_fixture.h"
+
+static const char tank[] =
+    "geometry:\n"
+    "  dimension: 3\n"
+    "  dr: 0.025\n"
+    "  h_over_dr: 2\n"
+    "  first_row: 1\n"
+    "  walls: [{type: box, lo: [0, 0, 0], hi: [0.2, 0.15, 0.15]}]\n"
+    "  fluid: [{type: box, lo: [0, 0, 0], hi: [0.2, 0.15, 0.1]}]\n"
+    "fluid: {rho0: 1000, c0: 20, nu: 1.0e-3}\n"
+    "gravity: [0, 0, -9.81]\n"
+    "initial: {pressure: hydrostatic}\n"
+    "numerics: {diffusion: ferrari, wall_impedance: acoustic}\n"
+    "time: {end: 1}\n";
+
+/* Moves the fluid off its lattice and sets it moving, then compares the solver's accelerations
+ * with those of the separate operators at the same state. */
+static void compare(struct sph_solver *sv, int shake) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  struct sabre_rng rng;
+  sabre_rng_seed(&rng, 17);
+  for (size_t a = 0; shake && a < f->n; a++)
+    for (int c = 0; c < sv->sys.dim; c++) {
+      f->x[c][a] += sabre_rng_uniform(&rng, -0.2, 0.2) * sv->sys.dr;
+      f->v[c][a] += sabre_rng_uniform(&rng, -0.3, 0.3);
+    }
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  const struct sph_system *s = &sv->sys;
+  const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
+  const double *muk[SPH_NKINDS] = {sv->mu[0], sv->mu[1], sv->mu[2]};
+  const double *vel[SPH_NKINDS][3];
+  for (int k = 0; k < SPH_NKINDS; k++)
+    for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
+  const double *flux[3] = {sv->wall_flux[0], sv->wall_flux[1], sv->wall_flux[2]};
+  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const int viscous = sv->cfg.nu > 0.0;
+  size_t compared = 0;
+  for (size_t a = 0; a < f->n; a++) {
+    if (sph_open_exit_segment(sv->open, sv, a) >= 0) continue; /* gravity only */
+    double gp[3], lap[3] = {0.0, 0.0, 0.0};
+    sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? sv->impedance : NULL,
+                         sv->cfg.open_gradient_difference, NULL, gp);
+    if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
+    for (int c = 0; c < 3; c++) {
+      const double acc = (lap[c] - gp[c]) * (1.0 / f->rho[a]) + sv->cfg.gravity[c];
+      if (acc != sv->acc[c][a])
+        fail_msg("particle %zu, component %d: fused %.17g, operators %.17g", a, c, sv->acc[c][a],
+                 acc);
+    }
+    compared++;
+  }
+  print_message("%zu particles: the same bits\n", compared);
+  assert_true(compared > 100);
+}
+
+static void test_tank(void **state) {
+  (void)state;
+  struct sph_solver *sv = fixture_solver_from_case(tank);
+  compare(sv, 1);
+  fixture_solver_destroy(sv);
+}
+
+static void test_open_difference(void **state) {
+  (void)state;
+  char text[4096];
+  snprintf(text, sizeof text, "%snumerics: {open_gradient: difference}\n", FIXTURE_THROUGH_CASE);
+  struct sph_solver *sv = fixture_solver_from_case(text);
+  char msg[1024];
+  for (int n = 0; n < 60; n++) /* particles created and leaving */
+    if (sph_solver_step(sv, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
+  compare(sv, 0);
+  fixture_solver_destroy(sv);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {cmocka_unit_test(test_tank),
+                                     cmocka_unit_test(test_open_difference)};
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

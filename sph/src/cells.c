@@ -18,6 +18,10 @@
 #define CELLS_PER_PARTICLE_MAX 4
 /* Widest stencil, in cells each side (the reach is one or two cells in practice). */
 #define STENCIL_REACH_MAX 16
+/* Query particles per slice of sph_nlist_build(): the rows of one slice are gathered, then copied
+ * into place, so that the work buffers hold one slice's rows (a few tens of MB) rather than a
+ * second copy of the whole list, which would double the peak memory of a large run. */
+#define NLIST_SLICE 32768
 
 static const char *const axis_name = "xyz";
 static const char *const kind_name[SPH_NKINDS] = {"fluid", "vertex", "segment"};
@@ -283,9 +287,12 @@ static int is_neighbour(const struct sph_system *s, enum sph_kind query, enum sp
   return sph_element_distance(s->dim, v, x, q) < radius;
 }
 
-static void check_kinds(enum sph_kind query, enum sph_kind other) {
+static void check_kinds(const struct sph_system *s, enum sph_kind query, enum sph_kind other) {
   if (query == SPH_KIND_SEGMENT && other == SPH_KIND_SEGMENT)
     cmn_error("segment-segment neighbour lists are not supported");
+  if (s->part[other].n > (size_t)SPH_NBR_MAX)
+    cmn_error("%zu particles of one kind: neighbour lists hold 32-bit indices (at most %zu)",
+              s->part[other].n, (size_t)SPH_NBR_MAX);
 }
 
 static void nlist_alloc(struct sph_nlist *nl, enum sph_kind query, enum sph_kind other, size_t n) {
@@ -296,12 +303,11 @@ static void nlist_alloc(struct sph_nlist *nl, enum sph_kind query, enum sph_kind
   nl->offset = cmn_calloc(n + 1, sizeof(size_t));
 }
 
-static void nlist_reserve(struct sph_nlist *nl) {
-  size_t need = nl->offset[nl->n];
+/* Room for `need` entries in nl->index, keeping the entries already there. */
+static void nlist_reserve(struct sph_nlist *nl, size_t need) {
   if (need > nl->capacity || !nl->index) {
     nl->capacity = need > 0 ? need + need / 8 : 1;
-    free(nl->index);
-    nl->index = cmn_malloc(nl->capacity * sizeof(size_t));
+    nl->index = cmn_realloc(nl->index, nl->capacity * sizeof *nl->index);
   }
 }
 
@@ -310,7 +316,8 @@ static void nlist_reserve(struct sph_nlist *nl) {
 struct sph_nlist_scratch {
   int nthreads;
   struct row_buffer {
-    size_t *data, n, cap;
+    sph_nbr_t *data;
+    size_t n, cap;
   } * buf;
   int *cell_thread;
   size_t *cell_at, ncells; /* cell arrays of ncells + 1 entries */
@@ -367,7 +374,7 @@ void sph_nlist_free(struct sph_nlist *nl) {
  * kept over several steps and a fresh one give the same bits. */
 
 /* Merge the ascending runs a[0..m) and a[m..n) into out. */
-static void merge_runs(const size_t *a, size_t m, size_t n, size_t *out) {
+static void merge_runs(const sph_nbr_t *a, size_t m, size_t n, sph_nbr_t *out) {
   size_t i = 0, j = m, k = 0;
   while (i < m && j < n) out[k++] = a[i] < a[j] ? a[i++] : a[j++];
   while (i < m) out[k++] = a[i++];
@@ -377,9 +384,9 @@ static void merge_runs(const size_t *a, size_t m, size_t n, size_t *out) {
 /* The n distinct indices of src in ascending order into dst (src is used as scratch): bottom-up
  * merges of the ascending runs the traversal leaves (one per stencil cell, the cells' contents
  * being in index order), between the two arrays. */
-static void sort_row(size_t *src, size_t n, size_t *dst) {
+static void sort_row(sph_nbr_t *src, size_t n, sph_nbr_t *dst) {
   if (n == 0) return;
-  size_t *from = src, *to = dst;
+  sph_nbr_t *from = src, *to = dst;
   for (;;) {
     size_t i = 0, runs = 0;
     while (i < n) {
@@ -396,7 +403,7 @@ static void sort_row(size_t *src, size_t n, size_t *dst) {
       if (to != dst) memcpy(dst, to, n * sizeof *dst);
       return;
     }
-    size_t *t = from;
+    sph_nbr_t *t = from;
     from = to;
     to = t;
   }
@@ -405,23 +412,24 @@ static void sort_row(size_t *src, size_t n, size_t *dst) {
 /* The naive search visits the candidates in index order: its rows are sorted as built. */
 void sph_nlist_build_naive(struct sph_nlist *nl, const struct sph_system *s, enum sph_kind query,
                            enum sph_kind other, double radius) {
-  check_kinds(query, other);
+  check_kinds(s, query, other);
   const struct sph_parts *pq = &s->part[query], *po = &s->part[other];
   double reach = query == SPH_KIND_SEGMENT || other == SPH_KIND_SEGMENT ? INFINITY : 0;
   nlist_alloc(nl, query, other, pq->n);
   for (int pass = 0; pass < 2; pass++) {
     for (size_t i = 0; i < pq->n; i++) {
       double xa[3] = {pq->x[0][i], pq->x[1][i], pq->x[2][i]};
-      size_t cnt = 0, *row = pass ? nl->index + nl->offset[i] : NULL;
+      size_t cnt = 0;
+      sph_nbr_t *row = pass ? nl->index + nl->offset[i] : NULL;
       for (size_t j = 0; j < po->n; j++) {
         double xb[3] = {po->x[0][j], po->x[1][j], po->x[2][j]};
         if (!is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) continue;
-        if (pass) row[cnt] = j;
+        if (pass) row[cnt] = (sph_nbr_t)j;
         cnt++;
       }
       if (!pass) nl->offset[i + 1] = nl->offset[i] + cnt;
     }
-    if (!pass) nlist_reserve(nl);
+    if (!pass) nlist_reserve(nl, nl->offset[nl->n]);
   }
 }
 
@@ -448,7 +456,7 @@ static int axis_stencil(const struct sph_cells *c, int a, int i, int reach, int 
 
 void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const struct sph_system *s,
                      enum sph_kind query, enum sph_kind other, double radius) {
-  check_kinds(query, other);
+  check_kinds(s, query, other);
   const struct sph_parts *pq = &s->part[query];
   if (c->dim != s->dim) cmn_error("cells built for dimension %d, system has %d", c->dim, s->dim);
   double reach = query == SPH_KIND_SEGMENT || other == SPH_KIND_SEGMENT ? c->segment_reach : 0;
@@ -482,9 +490,10 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   }
   const size_t *startq = c->start[query], *starto = c->start[other];
   const size_t *idxq = c->index[query], *idxo = c->index[other];
-  /* One pass: each thread appends the rows of the cells it handles to its own buffer (row order
-   * fixed by the traversal, so independent of the thread count); then the rows are copied into
-   * place once the offsets are known. */
+  /* Per slice of query indices [lo, hi): each thread appends the rows of the cells it handles to
+   * its own buffer (row order fixed by the traversal, so independent of the thread count); then
+   * the slice's offsets are known and its rows are copied into place. Every candidate is tested
+   * once whatever the number of slices. */
   int nthreads = 1;
 #ifdef _OPENMP
   nthreads = omp_get_max_threads();
@@ -493,101 +502,114 @@ void sph_nlist_build(struct sph_nlist *nl, const struct sph_cells *c, const stru
   struct row_buffer *buf = sc->buf;
   int *cell_thread = sc->cell_thread;
   size_t *cell_at = sc->cell_at;
+  for (size_t lo = 0; lo < pq->n || lo == 0; lo += NLIST_SLICE) {
+    const size_t hi = pq->n - lo > NLIST_SLICE ? lo + NLIST_SLICE : pq->n;
+    for (int t = 0; t < nthreads; t++) buf[t].n = 0;
 #ifdef _OPENMP
 #pragma omp parallel
 #endif
-  {
-    int tid = 0;
+    {
+      int tid = 0;
 #ifdef _OPENMP
-    tid = omp_get_thread_num();
+      tid = omp_get_thread_num();
 #endif
-    struct row_buffer *b = &buf[tid];
+      struct row_buffer *b = &buf[tid];
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 8)
 #endif
-    for (size_t ci = 0; ci < c->ncells; ci++) {
-      if (startq[ci] == startq[ci + 1]) continue;
-      cell_thread[ci] = tid;
-      cell_at[ci] = b->n;
-      int ic[3] = {0, 0, 0}, st[3][2 * STENCIL_REACH_MAX + 1], nst[3];
-      size_t rest = ci;
-      for (int a = 0; a < 3; a++) {
-        if (a < c->dim) {
-          ic[a] = (int)(rest % (size_t)c->ncell[a]);
-          rest /= (size_t)c->ncell[a];
-        }
-        nst[a] = axis_stencil(c, a, ic[a], sreach[a], st[a]);
-      }
-      for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
-        size_t i = idxq[qa], first = b->n;
-        double xa[3] = {c->xs[query][0][qa], c->xs[query][1][qa], c->xs[query][2][qa]};
-        /* Squared gap from xa to each stencil slab along the non-periodic axes (0 along periodic
-         * ones): a cell whose box is lim + slack away holds no candidate that passes the tests
-         * below, so skipping it leaves the list unchanged. */
-        double gap2[3][2 * STENCIL_REACH_MAX + 1];
-        for (int a = 0; a < 3; a++)
-          for (int k = 0; k < nst[a]; k++) {
-            double g = 0.0;
-            if (a < c->dim && !c->domain.periodic[a]) {
-              const double lo = c->domain.lo[a] + c->width[a] * st[a][k];
-              g = st[a][k] > ic[a]   ? lo - xa[a] - slack[a]
-                  : st[a][k] < ic[a] ? xa[a] - (lo + c->width[a]) - slack[a]
-                                     : 0.0;
-              g = g > 0.0 ? g : 0.0;
-            }
-            gap2[a][k] = g * g;
+      for (size_t ci = 0; ci < c->ncells; ci++) {
+        cell_thread[ci] = -1;
+        size_t q0 = startq[ci];
+        while (q0 < startq[ci + 1] && (idxq[q0] < lo || idxq[q0] >= hi)) q0++;
+        if (q0 == startq[ci + 1]) continue; /* no query particle of the slice here */
+        cell_thread[ci] = tid;
+        cell_at[ci] = b->n;
+        int ic[3] = {0, 0, 0}, st[3][2 * STENCIL_REACH_MAX + 1], nst[3];
+        size_t rest = ci;
+        for (int a = 0; a < 3; a++) {
+          if (a < c->dim) {
+            ic[a] = (int)(rest % (size_t)c->ncell[a]);
+            rest /= (size_t)c->ncell[a];
           }
-        for (int s2 = 0; s2 < nst[2]; s2++)
-          for (int s1 = 0; s1 < nst[1]; s1++)
-            for (int s0 = 0; s0 < nst[0]; s0++) {
-              if (gap2[0][s0] + gap2[1][s1] + gap2[2][s2] >= lim2) continue;
-              size_t cj = ((size_t)st[2][s2] * (size_t)c->ncell[1] + (size_t)st[1][s1]) *
-                              (size_t)c->ncell[0] +
-                          (size_t)st[0][s0];
-              size_t o0 = starto[cj], o1 = starto[cj + 1];
-              if (b->n + (o1 - o0) > b->cap) {
-                b->cap = 2 * (b->n + (o1 - o0)) + 1024;
-                b->data = cmn_realloc(b->data, b->cap * sizeof *b->data);
+          nst[a] = axis_stencil(c, a, ic[a], sreach[a], st[a]);
+        }
+        for (size_t qa = q0; qa < startq[ci + 1]; qa++) {
+          size_t i = idxq[qa], first = b->n;
+          if (i < lo || i >= hi) continue;
+          double xa[3] = {c->xs[query][0][qa], c->xs[query][1][qa], c->xs[query][2][qa]};
+          /* Squared gap from xa to each stencil slab along the non-periodic axes (0 along
+           * periodic ones): a cell whose box is lim + slack away holds no candidate that passes
+           * the tests below, so skipping it leaves the list unchanged. */
+          double gap2[3][2 * STENCIL_REACH_MAX + 1];
+          for (int a = 0; a < 3; a++)
+            for (int k = 0; k < nst[a]; k++) {
+              double g = 0.0;
+              if (a < c->dim && !c->domain.periodic[a]) {
+                const double clo = c->domain.lo[a] + c->width[a] * st[a][k];
+                g = st[a][k] > ic[a]   ? clo - xa[a] - slack[a]
+                    : st[a][k] < ic[a] ? xa[a] - (clo + c->width[a]) - slack[a]
+                                       : 0.0;
+                g = g > 0.0 ? g : 0.0;
               }
-              if (points) {
-                /* Point pairs: the test of is_neighbour() with the same arithmetic (the minimum
-                 * image written without branches), appending without a branch. */
-                for (size_t ob = o0; ob < o1; ob++) {
-                  double d[3];
-                  for (int a = 0; a < 3; a++) {
-                    d[a] = c->xs[other][a][ob] - xa[a];
-                    d[a] = d[a] - period[a] * (d[a] > half[a]) + period[a] * (d[a] < -half[a]);
-                  }
-                  double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                  size_t j = idxo[ob];
-                  b->data[b->n] = j;
-                  b->n += (r2 < r2max) & !(same & (j == i));
-                }
-                continue;
-              }
-              for (size_t ob = o0; ob < o1; ob++) {
-                double xb[3] = {c->xs[other][0][ob], c->xs[other][1][ob], c->xs[other][2][ob]};
-                size_t j = idxo[ob];
-                if (is_neighbour(s, query, other, xa, i, xb, j, radius, reach)) b->data[b->n++] = j;
-              }
+              gap2[a][k] = g * g;
             }
-        nl->offset[i + 1] = b->n - first;
+          for (int s2 = 0; s2 < nst[2]; s2++)
+            for (int s1 = 0; s1 < nst[1]; s1++)
+              for (int s0 = 0; s0 < nst[0]; s0++) {
+                if (gap2[0][s0] + gap2[1][s1] + gap2[2][s2] >= lim2) continue;
+                size_t cj = ((size_t)st[2][s2] * (size_t)c->ncell[1] + (size_t)st[1][s1]) *
+                                (size_t)c->ncell[0] +
+                            (size_t)st[0][s0];
+                size_t o0 = starto[cj], o1 = starto[cj + 1];
+                if (b->n + (o1 - o0) > b->cap) {
+                  const size_t need = b->n + (o1 - o0);
+                  b->cap = need + need / 4 + 1024;
+                  b->data = cmn_realloc(b->data, b->cap * sizeof *b->data);
+                }
+                if (points) {
+                  /* Point pairs: the test of is_neighbour() with the same arithmetic (the
+                   * minimum image written without branches), appending without a branch. */
+                  for (size_t ob = o0; ob < o1; ob++) {
+                    double d[3];
+                    for (int a = 0; a < 3; a++) {
+                      d[a] = c->xs[other][a][ob] - xa[a];
+                      d[a] = d[a] - period[a] * (d[a] > half[a]) + period[a] * (d[a] < -half[a]);
+                    }
+                    double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    size_t j = idxo[ob];
+                    b->data[b->n] = (sph_nbr_t)j;
+                    b->n += (r2 < r2max) & !(same & (j == i));
+                  }
+                  continue;
+                }
+                for (size_t ob = o0; ob < o1; ob++) {
+                  double xb[3] = {c->xs[other][0][ob], c->xs[other][1][ob], c->xs[other][2][ob]};
+                  size_t j = idxo[ob];
+                  if (is_neighbour(s, query, other, xa, i, xb, j, radius, reach))
+                    b->data[b->n++] = (sph_nbr_t)j;
+                }
+              }
+          nl->offset[i + 1] = b->n - first;
+        }
       }
     }
-  }
-  for (size_t i = 0; i < pq->n; i++) nl->offset[i + 1] += nl->offset[i];
-  nlist_reserve(nl);
-  /* Rows into place, each sorted by neighbour index (sort_row). */
+    for (size_t i = lo; i < hi; i++) nl->offset[i + 1] += nl->offset[i];
+    nlist_reserve(nl, nl->offset[hi]);
+    /* The slice's rows into place, each sorted by neighbour index (sort_row). */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
-  for (size_t ci = 0; ci < c->ncells; ci++) {
-    if (startq[ci] == startq[ci + 1]) continue;
-    size_t *from = buf[cell_thread[ci]].data + cell_at[ci];
-    for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
-      size_t i = idxq[qa], len = nl->offset[i + 1] - nl->offset[i];
-      sort_row(from, len, nl->index + nl->offset[i]);
-      from += len;
+    for (size_t ci = 0; ci < c->ncells; ci++) {
+      if (cell_thread[ci] < 0) continue;
+      sph_nbr_t *from = buf[cell_thread[ci]].data + cell_at[ci];
+      for (size_t qa = startq[ci]; qa < startq[ci + 1]; qa++) {
+        size_t i = idxq[qa];
+        if (i < lo || i >= hi) continue;
+        size_t len = nl->offset[i + 1] - nl->offset[i];
+        sort_row(from, len, nl->index + nl->offset[i]);
+        from += len;
+      }
     }
+    if (hi == pq->n) break;
   }
 }

@@ -84,7 +84,7 @@ static size_t compare_lists(const struct sph_nlist *cell, const struct sph_nlist
     size_t len = cell->offset[i + 1] - cell->offset[i];
     assert_int_equal(len, naive->offset[i + 1] - naive->offset[i]);
     size_t *row = malloc((len ? len : 1) * sizeof *row);
-    memcpy(row, cell->index + cell->offset[i], len * sizeof *row);
+    for (size_t k = 0; k < len; k++) row[k] = cell->index[cell->offset[i] + k];
     qsort(row, len, sizeof *row, cmp_size);
     for (size_t k = 0; k < len; k++) {
       assert_int_equal(row[k], naive->index[naive->offset[i] + k]);
@@ -128,7 +128,7 @@ static void check_dim(int dim, size_t nf, double radius) {
           first = nl;
         } else {
           assert_memory_equal(nl.offset, first.offset, (nl.n + 1) * sizeof(size_t));
-          assert_memory_equal(nl.index, first.index, nl.offset[nl.n] * sizeof(size_t));
+          assert_memory_equal(nl.index, first.index, nl.offset[nl.n] * sizeof *nl.index);
           sph_nlist_free(&nl);
         }
         sph_cells_free(&cells);
@@ -242,6 +242,57 @@ static void test_neighbours_idle_threads(void **state) {
   sph_system_free(&s);
 }
 
+/* More query particles than one slice of sph_nlist_build (32768): three slices. Fluid–segment rows
+ * against the naive search, every 101st fluid–fluid row against a direct scan of all particles
+ * (the naive fluid–fluid search would take too long), and the same bits with 1 and 2 threads. */
+static void test_neighbours_slices(void **state) {
+  (void)state;
+  struct sph_system s;
+  const size_t nf = 80000;
+  const double radius = 0.04;
+  random_system(&s, 3, 1u, 4321, nf, 150, 0.02);
+  const struct sph_parts *f = &s.part[SPH_KIND_FLUID];
+  struct sph_nlist first = {0}, naive = {0};
+  sph_nlist_build_naive(&naive, &s, SPH_KIND_FLUID, SPH_KIND_SEGMENT, radius);
+  for (int threads = 1; threads <= 2; threads++) {
+    set_threads(threads);
+    struct sph_cells cells = {0};
+    struct sph_nlist nl = {0};
+    sph_cells_build(&cells, &s, radius);
+    sph_nlist_build(&nl, &cells, &s, SPH_KIND_FLUID, SPH_KIND_SEGMENT, radius);
+    assert_true(compare_lists(&nl, &naive) > nf / 100);
+    sph_nlist_build(&nl, &cells, &s, SPH_KIND_FLUID, SPH_KIND_FLUID, radius);
+    size_t checked = 0;
+    for (size_t i = 0; i < nf; i += 101) {
+      size_t q = nl.offset[i];
+      for (size_t j = 0; j < nf; j++) {
+        const double xi[3] = {f->x[0][i], f->x[1][i], f->x[2][i]};
+        const double xj[3] = {f->x[0][j], f->x[1][j], f->x[2][j]};
+        double d[3];
+        sph_domain_delta(&s.domain, xi, xj, d);
+        if (j == i || d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= radius * radius) continue;
+        assert_true(q < nl.offset[i + 1]);
+        assert_int_equal(nl.index[q++], j);
+        checked++;
+      }
+      assert_int_equal(q, nl.offset[i + 1]);
+    }
+    assert_true(checked > 10 * (nf / 101)); /* rows of about 30 neighbours */
+    if (threads == 1) {
+      first = nl;
+    } else {
+      assert_memory_equal(nl.offset, first.offset, (nf + 1) * sizeof(size_t));
+      assert_memory_equal(nl.index, first.index, nl.offset[nf] * sizeof *nl.index);
+      sph_nlist_free(&nl);
+    }
+    sph_cells_free(&cells);
+  }
+  set_threads(1);
+  sph_nlist_free(&naive);
+  sph_nlist_free(&first);
+  sph_system_free(&s);
+}
+
 /* Point-to-element distance against hand-computed cases (face, edge and vertex regions). */
 static void test_element_distance(void **state) {
   (void)state;
@@ -262,9 +313,9 @@ static void test_element_distance(void **state) {
 int main(void) {
   sabre_fp_traps_on();
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_element_distance),       cmocka_unit_test(test_neighbours_1d),
-      cmocka_unit_test(test_neighbours_2d),          cmocka_unit_test(test_neighbours_3d),
-      cmocka_unit_test(test_neighbours_wide_radius), cmocka_unit_test(test_neighbours_empty),
-      cmocka_unit_test(test_neighbours_idle_threads)};
+      cmocka_unit_test(test_element_distance),        cmocka_unit_test(test_neighbours_1d),
+      cmocka_unit_test(test_neighbours_2d),           cmocka_unit_test(test_neighbours_3d),
+      cmocka_unit_test(test_neighbours_wide_radius),  cmocka_unit_test(test_neighbours_empty),
+      cmocka_unit_test(test_neighbours_idle_threads), cmocka_unit_test(test_neighbours_slices)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

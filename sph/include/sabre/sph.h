@@ -164,14 +164,18 @@ void sph_cells_build(struct sph_cells *c, const struct sph_system *s, double cel
 void sph_cells_free(struct sph_cells *c);
 
 /** Neighbour lists in compressed rows: neighbours of query particle i of kind `query` are the
- *  particles index[offset[i] .. offset[i+1]) of kind `other`. */
+ *  particles index[offset[i] .. offset[i+1]) of kind `other`. Neighbour indices are 32-bit
+ *  (sph_nbr_t): the lists are most of a run's memory, and a kind never holds 2^32 particles in
+ *  the memory of one machine (sph_nlist_build stops if it does). */
+typedef uint32_t sph_nbr_t;
+#define SPH_NBR_MAX UINT32_MAX
 struct sph_nlist_scratch;
 
 struct sph_nlist {
   enum sph_kind query, other;
   size_t n;       /**< number of query particles (rows) */
   size_t *offset; /**< n + 1 entries */
-  size_t *index;
+  sph_nbr_t *index;
   size_t capacity;                   /**< allocated length of index */
   struct sph_nlist_scratch *scratch; /**< work buffers kept between builds (owned; NULL at first) */
 };

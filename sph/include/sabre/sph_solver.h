@@ -293,10 +293,8 @@ struct sph_solver {
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
   double *csound;          /**< fluid sound speed c(ρ) of the forces' evaluation [m/s] */
   double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
-  double *wall_flux[3];    /**< per F–S pair: viscous wall flux, M(19–20) */
-  size_t cap_flux;
-  int *seg_group;  /**< force group of each segment (−1 none) */
-  int *vert_group; /**< force group of each vertex (−1 none) */
+  int *seg_group;          /**< force group of each segment (−1 none) */
+  int *vert_group;         /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
   double vertex_phi;          /**< vertex layer thickness / Δr of the vertex masses [-] */
   double repack_residual[2];  /**< largest defect × h before and after the repacking [-] */

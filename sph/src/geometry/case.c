@@ -372,10 +372,12 @@ static void size_check(struct cmn_case *c, struct sph_geometry *g, double wall_m
       walls += surface / face * (dim == 3 ? 2.0 : 1.0);
     }
   }
-  /* per fluid or vertex particle: ~60 doubles of fields and two neighbour lists (fluid, walls) of
-   * 8-byte entries; per segment: ~30 doubles */
+  /* per fluid particle: ~60 doubles of fields and its fluid row of 4-byte entries (radius 2h +
+   * skin: 1.33 nb entries, 1.125 of them allocated); per segment: its fields, its vertex's row and
+   * the fluid–segment pair data (fitted to bench-dambreak's peak at 10^6 fluid particles, 3.1 GB,
+   * to about 10 %) */
   const double nb = neighbours_per_particle(dim, g->h_over_dr);
-  const double bytes = (fluid + walls) * (480.0 + 2.0 * 8.0 * nb) + walls * 240.0;
+  const double bytes = fluid * (480.0 + 6.0 * nb) + walls * (480.0 + 5.0 * nb);
   g->est_fluid = fluid;
   g->est_walls = walls;
   g->est_bytes = bytes;

@@ -91,8 +91,8 @@ static double corner_angle(const double v[3][3], int k) {
  * (sum of the normals of the elements that contain that point, angle-weighted at a 3D vertex),
  * which is correct at edges and vertices of a closed mesh (Bærentzen & Aanæs 2005).
  */
-static int wall_side(const struct sph_system *t, const size_t *cand, size_t ncand, const double *x,
-                     double *dist) {
+static int wall_side(const struct sph_system *t, const sph_nbr_t *cand, size_t ncand,
+                     const double *x, double *dist) {
   int dim = t->dim;
   double dmin = INFINITY, qmin[3] = {0, 0, 0};
   for (size_t k = 0; k < ncand; k++) {
@@ -152,8 +152,8 @@ int sph_system_wall_side(const struct sph_system *s, const double *x, double *di
   size_t nseg = s->part[SPH_KIND_SEGMENT].n;
   *dist = INFINITY;
   if (nseg == 0) return -1;
-  size_t *all = cmn_malloc(nseg * sizeof *all);
-  for (size_t j = 0; j < nseg; j++) all[j] = j;
+  sph_nbr_t *all = cmn_malloc(nseg * sizeof *all);
+  for (size_t j = 0; j < nseg; j++) all[j] = (sph_nbr_t)j;
   int side = wall_side(s, all, nseg, x, dist);
   free(all);
   return side;
@@ -222,8 +222,8 @@ size_t sph_system_fill(struct sph_system *s, const struct sph_geometry *g) {
       if (side[i] >= 0) queue[tail++] = i;
     propagate(side, n, dim, queue, tail);
     size_t nseg = t.part[SPH_KIND_SEGMENT].n;
-    size_t *all = cmn_malloc((nseg + 1) * sizeof *all);
-    for (size_t j = 0; j < nseg; j++) all[j] = j;
+    sph_nbr_t *all = cmn_malloc((nseg + 1) * sizeof *all);
+    for (size_t j = 0; j < nseg; j++) all[j] = (sph_nbr_t)j;
     for (size_t i = 0; i < total && nseg > 0; i++) {
       if (side[i] >= 0) continue;
       double x[3] = {pc->x[0][i], pc->x[1][i], pc->x[2][i]}, d;

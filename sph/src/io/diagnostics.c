@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "operators/pair.h"
+#include "operators/pressure.h"
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
@@ -105,6 +106,8 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
   if (!(sv->cfg.nu > 0.0)) return;
   /* Shear: minus the wall contributions of Lap^γ to Σ m_a dv_a/dt (the wall shear stress of
    * M 19–20 on the segments, and the vertices' volume terms). */
+  const struct sph_wall_shear shear = {sv->mu[SPH_KIND_FLUID], sv->mu[SPH_KIND_SEGMENT],
+                                       0.5 * s->dr};
   for (size_t a = 0; a < f->n; a++) {
     const double fac = f->mass[a] / (f->rho[a] * f->gamma[a]);
     const double mua = sv->mu[SPH_KIND_FLUID][a];
@@ -125,7 +128,9 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
       for (int c = 0; c < 3; c++) mag += sv->nb.grad_gamma_as[c][q] * sv->nb.grad_gamma_as[c][q];
       if (mag == 0.0) continue; /* beyond the support: the pair is in the list only by its skin */
       mag = sqrt(mag);
-      for (int c = 0; c < 3; c++) out[g][c] += fac * sv->wall_flux[c][q] * mag;
+      double fl[3];
+      sph_wall_shear_flux(s, &sv->nb, &shear, a, q, fl);
+      for (int c = 0; c < 3; c++) out[g][c] += fac * fl[c] * mag;
     }
   }
 }

@@ -22,7 +22,7 @@ static void reserve_pairs(struct sph_nbrs *nb) {
   size_t n = nb->list[SPH_KIND_SEGMENT].n;
   size_t np = n ? nb->list[SPH_KIND_SEGMENT].offset[n] : 0;
   if (np <= nb->cap_pairs && nb->dist_as) return;
-  size_t cap = np + np / 2 + 16;
+  size_t cap = np + np / 8 + 16;
   for (int c = 0; c < 3; c++)
     nb->grad_gamma_as[c] = cmn_realloc(nb->grad_gamma_as[c], cap * sizeof(double));
   nb->dist_as = cmn_realloc(nb->dist_as, cap * sizeof(double));
@@ -177,7 +177,8 @@ static void pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
   if (*dist < sph_kernel_support(k)) sph_gamma_element(k, xa, &e, term, gs);
 }
 
-/* γ_a, ∇γ_a and the side test from the pair data of row a (sums in list order, so that reused
+/* γ_a, ∇γ_a and the side test from the pair data of row a (dist: the distances to the row's
+ * elements, from its first pair; NULL: no side test) (sums in list order, so that reused
  * and recomputed pair data give the same bits). A pair beyond the support has term and ∇γ_as
  * exactly +0 (pair_wall): adding it leaves the sums' bits unchanged (a sum started at +0 is never
  * −0, and x + 0 = x), so a row holding more pairs than needed (a list kept from an earlier build)
@@ -187,15 +188,17 @@ static int sum_row(struct sph_nbrs *nb, struct sph_parts *f, size_t a, const dou
                    double support) {
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
   double sum_term = 0.0, g[3] = {0.0, 0.0, 0.0}, dmin = INFINITY, side = 0.0;
-  for (size_t p = nl->offset[a]; p < nl->offset[a + 1]; p++) {
+  const size_t first = nl->offset[a];
+  for (size_t p = first; p < nl->offset[a + 1]; p++) {
     sum_term += nb->term_as[p];
     for (int c = 0; c < 3; c++) g[c] += nb->grad_gamma_as[c][p];
     /* Side test against the nearest element(s): outside when behind their summed normals. */
-    if (dist && dist[p] < support) {
-      if (dist[p] < dmin * (1.0 - 1e-9)) {
-        dmin = dist[p];
+    const double d = dist ? dist[p - first] : INFINITY;
+    if (d < support) {
+      if (d < dmin * (1.0 - 1e-9)) {
+        dmin = d;
         side = nb->dist_as[p];
-      } else if (dist[p] <= dmin * (1.0 + 1e-9)) {
+      } else if (d <= dmin * (1.0 + 1e-9)) {
         side += nb->dist_as[p];
       }
     }
@@ -230,8 +233,6 @@ static void share_from_row(const struct sph_nbrs *nb, size_t j, size_t stamp,
 void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_kernel *k) {
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
-  size_t np = f->n ? nl->offset[f->n] : 0;
-  double *dist = cmn_malloc((np + 1) * sizeof *dist);
   if (f->n + 1 > nb->cap_behind) {
     nb->cap_behind = f->n + f->n / 2 + 16;
     nb->behind = cmn_realloc(nb->behind, nb->cap_behind * sizeof *nb->behind);
@@ -240,7 +241,7 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
   /* 3D: per thread, the edge values of the row being summed (shared across coplanar edges) */
   const int share = s->dim == 3 && nb->edge_link != NULL;
   size_t maxrow = 0;
-  for (size_t a = 0; share && a < f->n; a++)
+  for (size_t a = 0; a < f->n; a++)
     if (nl->offset[a + 1] - nl->offset[a] > maxrow) maxrow = nl->offset[a + 1] - nl->offset[a];
   int nthreads = 1;
 #ifdef _OPENMP
@@ -248,6 +249,8 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
 #endif
   struct sph_edge_share *rows =
       share ? cmn_malloc((maxrow + 1) * (size_t)nthreads * sizeof *rows) : NULL;
+  /* per thread, the distances to the elements of the row being summed (side test) */
+  double *dists = cmn_malloc((maxrow + 1) * (size_t)nthreads * sizeof *dists);
   const size_t nseg = s->part[SPH_KIND_SEGMENT].n;
   if (share && nseg * (size_t)nthreads > nb->cap_slots) { /* fresh slots: stamps start at 1 */
     free(nb->row_slot);
@@ -264,11 +267,12 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
   for (size_t a = 0; a < f->n; a++) {
     struct sph_edge_share *row = NULL;
     struct sph_row_slot *slot = NULL;
-    if (share) {
-      int tid = 0;
+    int tid = 0;
 #ifdef _OPENMP
-      tid = omp_get_thread_num();
+    tid = omp_get_thread_num();
 #endif
+    double *dist = dists + (size_t)tid * (maxrow + 1);
+    if (share) {
       row = rows + (size_t)tid * (maxrow + 1);
       slot = nb->row_slot + (size_t)tid * nseg;
     }
@@ -281,14 +285,14 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
         share_from_row(nb, j, stamp, slot, row, sh);
         slot[j] = (struct sph_row_slot){stamp, p - first};
       }
-      pair_wall(nb, s, k, a, j, sh, &nb->term_as[p], gs, &dist[p], &nb->dist_as[p]);
+      pair_wall(nb, s, k, a, j, sh, &nb->term_as[p], gs, &dist[p - first], &nb->dist_as[p]);
       for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
       if (sh && sh->got) shared += (size_t)((sh->have & 1) + (sh->have >> 1 & 1) + (sh->have >> 2));
     }
     behind[a] = (unsigned char)sum_row(nb, f, a, dist, sph_kernel_support(k));
   }
   free(rows);
-  free(dist);
+  free(dists);
   nb->edges_shared = shared;
   /* Every particle behind a wall is flagged; the count and the lowest index come from the flags
    * in index order, so they do not depend on the thread count. */

@@ -164,8 +164,9 @@ double sph_op_div(const struct sph_op *op, double k, const double *const B[SPH_N
 
 /* l_fluid (NULL: none): as g_fluid of grad(). */
 static void lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
-                const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
-                const double *l_fluid, double out[3]) {
+                const double *const A[SPH_NKINDS][3], const double *const wall_flux[3],
+                const struct sph_wall_shear *shear, size_t a, const double *l_fluid,
+                double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
   const double beta_a = beta[SPH_KIND_FLUID][a];
@@ -189,12 +190,18 @@ static void lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
       for (int c = 0; c < 3; c++) l[c] += t * (Aa[c] - comp(A[kind], c, b));
     }
   }
-  if (wall_flux) {
+  if (wall_flux || shear) {
     const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
     for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
       const double *gg[3] = {op->nb->grad_gamma_as[0], op->nb->grad_gamma_as[1],
                              op->nb->grad_gamma_as[2]};
       const double mag = sqrt(gg[0][q] * gg[0][q] + gg[1][q] * gg[1][q] + gg[2][q] * gg[2][q]);
+      if (shear) {
+        double fl[3];
+        sph_wall_shear_flux(s, op->nb, shear, a, q, fl);
+        for (int c = 0; c < 3; c++) l[c] -= fl[c] * mag;
+        continue;
+      }
       for (int c = 0; c < 3; c++)
         if (wall_flux[c]) l[c] -= wall_flux[c][q] * mag;
     }
@@ -206,11 +213,11 @@ static void lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
 void sph_op_lap(const struct sph_op *op, const double *const beta[SPH_NKINDS],
                 const double *const A[SPH_NKINDS][3], const double *const wall_flux[3], size_t a,
                 double out[3]) {
-  lap(op, beta, A, wall_flux, a, NULL, out);
+  lap(op, beta, A, wall_flux, NULL, a, NULL, out);
 }
 
 void sph_op_lap_walls(const struct sph_op *op, const double *const beta[SPH_NKINDS],
-                      const double *const A[SPH_NKINDS][3], const double *const wall_flux[3],
+                      const double *const A[SPH_NKINDS][3], const struct sph_wall_shear *shear,
                       size_t a, const double l_fluid[3], double out[3]) {
-  lap(op, beta, A, wall_flux, a, l_fluid, out);
+  lap(op, beta, A, NULL, shear, a, l_fluid, out);
 }

@@ -66,8 +66,34 @@ void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
                                 const double *impedance, int open_difference,
                                 const struct sph_vertex_layer *layer, const double g_fluid[3],
                                 double out[3]);
+/*
+ * The viscous wall flux of M(19–20) for the pair q (segment j) of fluid particle a:
+ * (μ_a + μ_s) (v_a − v_s)_t / max(z, z_min), z = nb->dist_as[q] the distance from a to the
+ * segment's plane, (·)_t the part along the segment. Computed where it is used (the momentum
+ * equation, the wall forces) rather than stored per pair: 24 bytes per fluid–segment pair.
+ */
+struct sph_wall_shear {
+  const double *mu_fluid, *mu_segment; /* μ = ν ρ per particle [Pa s] */
+  double zmin;                         /* the floor of z, Δr/2 [m] */
+};
+static inline void sph_wall_shear_flux(const struct sph_system *s, const struct sph_nbrs *nb,
+                                       const struct sph_wall_shear *sh, size_t a, size_t q,
+                                       double out[3]) {
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *sg = &s->part[SPH_KIND_SEGMENT];
+  const size_t j = nb->list[SPH_KIND_SEGMENT].index[q];
+  const double n[3] = {sg->normal[0][j], sg->normal[1][j], sg->normal[2][j]};
+  double dv[3];
+  const double z = nb->dist_as[q];
+  for (int c = 0; c < 3; c++) dv[c] = f->v[c][a] - sg->v[c][j];
+  const double dn = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];
+  const double coef = (sh->mu_segment[j] + sh->mu_fluid[a]) / (z > sh->zmin ? z : sh->zmin);
+  for (int c = 0; c < 3; c++) out[c] = coef * (dv[c] - dn * n[c]);
+}
+
+/* Lap^γ_a(β, A) of sph_op_lap from the fluid part l_fluid, with the wall flux of shear (NULL:
+ * none) computed per pair. */
 void sph_op_lap_walls(const struct sph_op *op, const double *const beta[SPH_NKINDS],
-                      const double *const A[SPH_NKINDS][3], const double *const wall_flux[3],
+                      const double *const A[SPH_NKINDS][3], const struct sph_wall_shear *shear,
                       size_t a, const double l_fluid[3], double out[3]);
 
 #endif

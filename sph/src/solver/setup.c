@@ -290,7 +290,6 @@ void sph_solver_free(struct sph_solver *sv) {
     free(sv->x_list[c]);
     free(sv->v0[c]);
     free(sv->grad_gamma_n[c]);
-    free(sv->wall_flux[c]);
   }
   free(sv->rho_n);
   free(sv->gamma_n);

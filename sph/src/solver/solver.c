@@ -41,11 +41,6 @@ static void grow_arrays(struct sph_solver *sv) {
     }
     sv->cap[k] = cap;
   }
-  size_t np = sv->nb.cap_pairs;
-  if (np > sv->cap_flux || !sv->wall_flux[0]) {
-    for (int c = 0; c < 3; c++) sv->wall_flux[c] = grow(sv->wall_flux[c], np);
-    sv->cap_flux = np;
-  }
 }
 
 void sph_solver_sync(struct sph_solver *sv) {
@@ -423,33 +418,17 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
 
 static void forces_impl(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
-  const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *sg = &s->part[SPH_KIND_SEGMENT];
-  const struct sph_nlist *nls = &sv->nb.list[SPH_KIND_SEGMENT];
-  const double zmin = 0.5 * s->dr;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const int viscous = sv->cfg.nu > 0.0;
-  /* Wall shear stress per F–S pair, M(19–20): (μ_s + μ_a) (v_a − v_s)_t / z. */
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64) if (viscous)
-#endif
-  for (size_t a = 0; a < (viscous ? f->n : 0); a++) {
-    for (size_t q = nls->offset[a]; q < nls->offset[a + 1]; q++) {
-      size_t j = nls->index[q];
-      const double n[3] = {sg->normal[0][j], sg->normal[1][j], sg->normal[2][j]};
-      double dv[3], z = sv->nb.dist_as[q];
-      for (int c = 0; c < 3; c++) dv[c] = f->v[c][a] - sg->v[c][j];
-      const double dn = dot3(dv, n);
-      const double coef =
-          (sv->mu[SPH_KIND_SEGMENT][j] + sv->mu[SPH_KIND_FLUID][a]) / (z > zmin ? z : zmin);
-      for (int c = 0; c < 3; c++) sv->wall_flux[c][q] = coef * (dv[c] - dn * n[c]);
-    }
-  }
+  /* the wall shear stress per F–S pair, M(19–20), computed in the viscous term */
+  const struct sph_wall_shear shear = {sv->mu[SPH_KIND_FLUID], sv->mu[SPH_KIND_SEGMENT],
+                                       0.5 * s->dr};
   const struct sph_op op = {s, &sv->kernel, &sv->nb};
   const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const double *muk[SPH_NKINDS] = {sv->mu[0], sv->mu[1], sv->mu[2]};
   const double *vel[SPH_NKINDS][3];
   for (int k = 0; k < SPH_NKINDS; k++)
     for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
-  const double *flux[3] = {sv->wall_flux[0], sv->wall_flux[1], sv->wall_flux[2]};
   /* the inflow vertices' entered mass as a layer in front of them, with M(37) (§10) */
   const int use_layer = sv->open && !sv->open_off && !sv->cfg.open_gradient_difference;
   if (use_layer) sph_open_layer(sv->open, sv);
@@ -478,7 +457,7 @@ static void forces_impl(struct sph_solver *sv) {
     sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a,
                                sv->cfg.wall_impedance ? sv->impedance : NULL, diffo,
                                use_layer ? &layer : NULL, gf, gp);
-    if (viscous) sph_op_lap_walls(&op, muk, (const double *const(*)[3])vel, flux, a, lf, lap);
+    if (viscous) sph_op_lap_walls(&op, muk, (const double *const(*)[3])vel, &shear, a, lf, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];
   }

@@ -288,6 +288,9 @@ struct sph_solver {
   double *acc[3];          /**< fluid acceleration [m/s²] */
   double *x0[3], *v0[3];   /**< fluid state at the start of the step */
   double *rho_n, *gamma_n; /**< fluid ρ^n, γ^n */
+  double *sum_w[2];        /**< fluid Σ_{b∈P} m_b w_ab at x0 ([0]) and at the corrector ([1]) */
+  int sum_w_valid;         /**< sum_w[0] holds the sums at the current positions (the previous
+                                corrector's; no open boundaries, store unchanged since) */
   double *grad_gamma_n[3]; /**< fluid ∇γ^n (for the dynamic γ) */
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */

@@ -34,6 +34,8 @@ static void grow_arrays(struct sph_solver *sv) {
         sv->grad_gamma_n[c] = grow(sv->grad_gamma_n[c], cap);
       }
       sv->rho_n = grow(sv->rho_n, cap);
+      sv->sum_w[0] = grow(sv->sum_w[0], cap);
+      sv->sum_w[1] = grow(sv->sum_w[1], cap);
       sv->gamma_n = grow(sv->gamma_n, cap);
       sv->diff = grow(sv->diff, cap);
       sv->csound = grow(sv->csound, cap);
@@ -48,6 +50,7 @@ void sph_solver_sync(struct sph_solver *sv) {
   sv->evaluated_step = -1;
   sv->gamma_current = 0;
   sv->lists_valid = 0;
+  sv->sum_w_valid = 0;
 }
 
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
@@ -498,41 +501,58 @@ double sph_solver_timestep(const struct sph_solver *sv) {
 
 /* ------------------------------------------------------------------------------------------- */
 
-/* γ_a ρ_a = γ^n ρ^n + Σ_{b∈P} m_b (w_ab − w_ab^n) + fac · D, J(10), M(84): positions now vs x0. */
-static void continuity_impl(struct sph_solver *sv, double fac) {
-  struct sph_system *s = &sv->sys;
-  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+/* Σ_{b∈P} m_b w_ab of fluid particle a over its fluid and vertex neighbours, at the positions x of
+ * the fluid (x0 or the store's) and the vertices' own; pairs beyond the support add +0. */
+static double sum_w(const struct sph_solver *sv, size_t a, const double *const x[3]) {
+  const struct sph_system *s = &sv->sys;
   const struct sph_kernel *k = &sv->kernel;
   const double support = sph_kernel_support(k);
+  const double xa[3] = {x[0][a], x[1][a], x[2][a]};
+  double sum = 0.0;
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &s->part[kind];
+    const struct sph_nlist *nl = &sv->nb.list[kind];
+    const double *const *xk = kind == SPH_KIND_FLUID ? x : (const double *const *)pb->x;
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      const size_t b = nl->index[q];
+      const double xb[3] = {xk[0][b], xk[1][b], xk[2][b]};
+      double d[3];
+      sph_domain_delta(&s->domain, xb, xa, d);
+      const double r = sqrt(dot3(d, d));
+      if (r >= support) continue;
+      sum += pb->mass[b] * sph_kernel_w_inline(k, r);
+    }
+  }
+  return sum;
+}
+
+/* γ_a ρ_a = γ^n ρ^n + Σ_{b∈P} m_b w_ab − Σ_{b∈P} m_b w_ab^n + fac · D, J(10), M(84): positions now
+ * vs x0. The sums at x0 (sv->sum_w[0]) are formed in the predictor and kept for the corrector;
+ * without open boundaries (constant masses) they are the previous corrector's sums at the same
+ * positions (sv->sum_w[1], swapped in at the end of the step), so that a step forms one sum per
+ * stage. The continuity of the corrector keeps its sums in sum_w[1]. */
+static void continuity_impl(struct sph_solver *sv, double fac, int corrector) {
+  struct sph_system *s = &sv->sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double scale = fac * (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI ? sv->dt : 1.0);
+  const int need0 = !corrector && !sv->sum_w_valid;
+  double *sum0 = sv->sum_w[0], *sum1 = sv->sum_w[1];
+  const double *const *xnow = (const double *const *)f->x;
+  const double *const *xold = (const double *const *)sv->x0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
+    if (need0) sum0[a] = sum_w(sv, a, xold);
     if (sph_open_exit_segment(sv->open, sv, a) >= 0) { /* leaving: density kept (§10) */
       f->rho[a] = sv->rho_n[a];
+      if (corrector) sum1[a] = 0.0;
       continue;
     }
-    const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+    const double now = sum_w(sv, a, xnow);
+    if (corrector) sum1[a] = now;
     const double xa0[3] = {sv->x0[0][a], sv->x0[1][a], sv->x0[2][a]};
-    double dsum = 0.0;
-    for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
-      const struct sph_parts *pb = &s->part[kind];
-      const struct sph_nlist *nl = &sv->nb.list[kind];
-      for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-        size_t b = nl->index[q];
-        double xb[3], xb0[3], d[3], d0[3];
-        for (int c = 0; c < 3; c++) {
-          xb[c] = pb->x[c][b];
-          xb0[c] = kind == SPH_KIND_FLUID ? sv->x0[c][b] : xb[c];
-        }
-        sph_domain_delta(&s->domain, xb, xa, d);
-        sph_domain_delta(&s->domain, xb0, xa0, d0);
-        const double r = sqrt(dot3(d, d)), r0 = sqrt(dot3(d0, d0));
-        if (r >= support && r0 >= support) continue;
-        dsum += pb->mass[b] * (sph_kernel_w_inline(k, r) - sph_kernel_w_inline(k, r0));
-      }
-    }
+    double dsum = now - sum0[a];
     /* Open boundaries: the i/o terms of J(11) (docs/sph-solver.md §10), 0 without open groups. */
     dsum += sph_open_continuity_terms(sv->open, sv, a, xa0, sv->rho_n[a], fac);
     f->rho[a] = (sv->gamma_n[a] * sv->rho_n[a] + dsum + scale * sv->diff[a]) / f->gamma[a];
@@ -607,9 +627,9 @@ void sph_solver_forces(struct sph_solver *sv) {
   timed(sv, SPH_PHASE_FORCES, t0);
 }
 
-static void continuity(struct sph_solver *sv, double fac) {
+static void continuity(struct sph_solver *sv, double fac, int corrector) {
   const double t0 = cmn_wall_time();
-  continuity_impl(sv, fac);
+  continuity_impl(sv, fac, corrector);
   timed(sv, SPH_PHASE_CONTINUITY, t0);
 }
 
@@ -858,7 +878,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   lists_check(sv);
   refresh_gamma(sv);
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)sv->v0, 0.5 * dt);
-  continuity(sv, 0.5 * dt);
+  continuity(sv, 0.5 * dt, 0);
   sph_open_mass_set(sv->open, sv, 0.5 * dt); /* open vertices: m* = m^n + Δt/2 ṁ^n (§10) */
   sv->stage_time = sv->time + 0.5 * dt;      /* the predictor's state (open-boundary data) */
   sph_solver_boundary_values(sv);
@@ -884,7 +904,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   refresh_gamma(sv);
   sv->gamma_current = 1;
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)f->v, dt);
-  continuity(sv, dt);
+  continuity(sv, dt, 1);
   sph_open_mass_end(sv->open, sv, dt); /* m^{n+1} = m^n + Δt ṁ*, J(14) (§10) */
   if (sqrt(dmax) > 0.5 * skin(sv)) {
     snprintf(msg, msglen,
@@ -899,6 +919,12 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   const size_t ndel = sv->open_off ? 0 : sph_open_delete_particles(sv->open, sv);
   int rc = check_state(sv, msg, msglen);
   const size_t nnew = sv->open_off || rc ? 0 : sph_open_create_particles(sv->open, sv);
+  /* The corrector's sums are the next step's sums at x0 while the masses stay (no open
+   * boundaries) and the store is not changed by hand (sph_solver_sync drops them). */
+  double *t = sv->sum_w[0];
+  sv->sum_w[0] = sv->sum_w[1];
+  sv->sum_w[1] = t;
+  sv->sum_w_valid = sv->open == NULL && rc == 0;
   if (ndel || nnew) sph_solver_sync(sv);
   sv->time += dt;
   sv->step++;

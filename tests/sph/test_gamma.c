@@ -666,8 +666,8 @@ static void test_errors(void **state) {
 
 /* sph_gamma3d_pair (the frame's axes computed once per element, then term, ∇γ_as, the distance to
  * the triangle and to its plane from one frame) against sph_gamma_element and sph_element_distance
- * at random points around random triangles: near the plane, beyond the support, over the
- * interior, edges and vertices. */
+ * at random points around random triangles: near the plane, on it, beyond the support, over the
+ * interior, edges and vertices; and sph_gamma3d_pair_offset against sph_gamma3d_pair. */
 static void test_pair_path_3d(void **state) {
   (void)state;
   struct sabre_rng rng;
@@ -675,7 +675,8 @@ static void test_pair_path_3d(void **state) {
   struct sph_kernel k;
   sph_kernel_init(&k, 3, H);
   double worst_term = 0.0, worst_grad = 0.0, worst_dist = 0.0, worst_off = 0.0;
-  int inside = 0, beyond = 0;
+  double worst_offset = 0.0;
+  int inside = 0, beyond = 0, by_offset = 0, on_plane = 0;
   for (int trial = 0; trial < 400; trial++) {
     struct sph_wall_element e;
     double c[3];
@@ -698,13 +699,31 @@ static void test_pair_path_3d(void **state) {
     for (int t = 0; t < 10; t++) {
       /* a point of the triangle (barycentric, sometimes beyond an edge) lifted off its plane */
       double b1 = sabre_rng_uniform(&rng, -0.3, 1.0), b2 = sabre_rng_uniform(&rng, -0.3, 1.0);
-      const double lift = (t % 3 == 0 ? 1e-6 : 1.0) * sabre_rng_uniform(&rng, -2.6 * H, 2.6 * H);
+      const double lift =
+          t == 9 ? 0.0 : (t % 3 == 0 ? 1e-6 : 1.0) * sabre_rng_uniform(&rng, -2.6 * H, 2.6 * H);
       double a[3];
       for (int i = 0; i < 3; i++)
         a[i] = e.x[0][i] + b1 * (e.x[1][i] - e.x[0][i]) + b2 * (e.x[2][i] - e.x[0][i]) +
                lift * e.normal[i];
       double term, grad[3], dist, off, term0, grad0[3], q[3];
       sph_gamma3d_pair(&k, a, &e, &ax, NULL, &term, grad, &dist, &off);
+      /* the solver's path from the offset to the first vertex: the same to round-off, except
+       * on the plane, which it leaves to sph_gamma3d_pair */
+      double d[3], term1, grad1[3], dist1, off1;
+      for (int i = 0; i < 3; i++) d[i] = a[i] - ax.x0[i];
+      if (sph_gamma3d_pair_offset(&k, d, &ax, NULL, &term1, grad1, &dist1, &off1) == 0) {
+        /* Both paths see the point's position in the plane to round-off, ~1e-16 H; within |δ| of
+         * an edge the term (a solid angle) varies by O(1) over O(|δ|) in the plane, so the
+         * paths may differ by ~1e-16 H/|δ|: the differences are scaled by min(1, |δ|/H). */
+        const double cond = fmin(1.0, fabs(off) / H);
+        double dmax = fmax(fabs(term1 - term), fmax(fabs(dist1 - dist), fabs(off1 - off)) / H);
+        for (int i = 0; i < 3; i++) dmax = fmax(dmax, H * fabs(grad1[i] - grad[i]));
+        worst_offset = fmax(worst_offset, dmax * cond);
+        by_offset++;
+      } else {
+        assert_true(fabs(off) <= SPH_GAMMA_PLANE_TOL * H);
+        on_plane++;
+      }
       sph_gamma_element(&k, a, &e, &term0, grad0);
       const double dist0 = sph_element_distance(3, (const double(*)[3])e.x, a, q);
       double off0 = 0.0;
@@ -727,6 +746,12 @@ static void test_pair_path_3d(void **state) {
       "pair path vs element + distance: %d pairs in the support, %d beyond; |Δterm| %.1e, "
       "h|Δgrad| %.1e, |Δdist|/h %.1e, |Δoff|/h %.1e\n",
       inside, beyond, worst_term, worst_grad, worst_dist, worst_off);
+  printf(
+      "offset path vs pair path: %d points (%d on the plane left to the pair path), largest "
+      "difference times min(1, |δ|/h): %.1e\n",
+      by_offset, on_plane, worst_offset);
+  assert_true(by_offset > 2000 && on_plane > 100);
+  assert_true(worst_offset <= 1e-14);
   assert_true(inside > 1500 && beyond > 200);
   assert_true(worst_term <= 1e-14);
   assert_true(worst_grad <= 1e-14);

@@ -161,10 +161,15 @@ static void pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
                       double *term, double gs[3], double *dist, double *off) {
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *seg = &s->part[SPH_KIND_SEGMENT];
   const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  if (s->dim == 3) { /* the triangle's precomputed frame, shifted to a (the hot path of 3D runs) */
+    double d[3];
+    sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
+    if (sph_gamma3d_pair_offset(k, d, &nb->tri_axes[j], sh, term, gs, dist, off) == 0) return;
+  }
   struct sph_wall_element e;
   sph_segment_vertices(s, j, xa, e.x);
   for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
-  if (s->dim == 3) { /* one frame of the triangle for all four (the hot path of 3D runs) */
+  if (s->dim == 3) { /* a on the triangle's plane: the frame from the vertices */
     sph_gamma3d_pair(k, xa, &e, &nb->tri_axes[j], sh, term, gs, dist, off);
     return;
   }

@@ -52,6 +52,26 @@ void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax)
     ax->e1[i] = d1[i] / l1;
   }
   cross3(ax->nu, ax->e1, ax->e2);
+  /* the frame-independent rest of the pair computation (sph_gamma3d_pair_offset) */
+  double cu = 0.0, cv = 0.0;
+  for (int j = 0; j < 3; j++) {
+    ax->x0[j] = e->x[0][j];
+    ax->normal[j] = e->normal[j];
+    double r[3];
+    for (int i = 0; i < 3; i++) r[i] = e->x[j][i] - e->x[0][i];
+    ax->u[j][0] = dot3(r, ax->e1);
+    ax->u[j][1] = dot3(r, ax->e2);
+    cu += ax->u[j][0] / 3.0;
+    cv += ax->u[j][1] / 3.0;
+  }
+  ax->rad = 0.0;
+  for (int j = 0; j < 3; j++) {
+    const double *A = ax->u[j], *B = ax->u[(j + 1) % 3];
+    const double ex = B[0] - A[0], ey = B[1] - A[1], len = sqrt(ex * ex + ey * ey);
+    ax->dir[j][0] = ex / len;
+    ax->dir[j][1] = ey / len;
+    ax->rad = fmax(ax->rad, hypot(A[0] - cu, A[1] - cv));
+  }
 }
 
 static void frame_at(const struct sph_wall_element *e, const struct sph_tri_axes *ax,
@@ -172,11 +192,18 @@ struct edge_geom {
 };
 
 static void edge_geometry(const struct tri_consts *t, const double *A, const double *B,
-                          struct edge_geom *g) {
-  double ex = B[0] - A[0], ey = B[1] - A[1];
-  const double len = sqrt(ex * ex + ey * ey);
-  ex /= len;
-  ey /= len;
+                          const double *dir, struct edge_geom *g) {
+  double ex, ey;
+  if (dir) { /* the element's unit edge direction, computed once */
+    ex = dir[0];
+    ey = dir[1];
+  } else {
+    ex = B[0] - A[0];
+    ey = B[1] - A[1];
+    const double len = sqrt(ex * ex + ey * ey);
+    ex /= len;
+    ey /= len;
+  }
   g->sA = A[0] * ex + A[1] * ey;
   g->sB = B[0] * ex + B[1] * ey;
   /* cross(X, e) for X on the edge: dθ/ds = d/(d² + s²); from the endpoint nearer to p */
@@ -277,42 +304,49 @@ static double limit_term(const struct sph_kernel *k, const double *a,
   return side * omega / (4.0 * SPH_PI);
 }
 
-/* The term and ∇γ_as of the element at a, given its frame at a. */
+/* The term and ∇γ_as of the element at a, given its frame at a. ax (NULL: none) gives the edges'
+ * directions, the bounding radius and the normal; e (only read within SPH_GAMMA_PLANE_TOL·h of the
+ * plane, and for the normal without ax) the vertices. */
 static void element_in_frame(const struct sph_kernel *k, const double *a,
-                             const struct sph_wall_element *e, const struct tri_frame *fr,
-                             const double *m, struct sph_edge_share *sh, double *term,
-                             double grad[3]) {
-  const struct tri_frame f = *fr;
+                             const struct sph_wall_element *e, const struct sph_tri_axes *ax,
+                             const struct tri_frame *f, const double *m, struct sph_edge_share *sh,
+                             double *term, double grad[3]) {
   grad[0] = grad[1] = grad[2] = 0.0;
   *term = 0.0;
   if (sh) sh->got = 0;
   const double h = k->h;
-  if (fabs(f.delta) >= 2.0 * h) return;
+  if (fabs(f->delta) >= 2.0 * h) return;
   /* On the triangle the term needs the one-sided limit; anywhere else, even 1e-13 h from its
    * plane, the closed form is well conditioned (and 0 exactly on the plane off the triangle). */
   int where;
-  const int on = fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * h &&
-                 classify(a, e, &f, SPH_GAMMA_PLANE_TOL * h, &where) != OUTSIDE;
+  const int on = fabs(f->delta) <= SPH_GAMMA_PLANE_TOL * h &&
+                 classify(a, e, f, SPH_GAMMA_PLANE_TOL * h, &where) != OUTSIDE;
   struct tri_consts t;
-  consts(on ? 0.0 : f.delta * k->inv_h, &t);
+  consts(on ? 0.0 : f->delta * k->inv_h, &t);
   double P[3][2];
   for (int j = 0; j < 3; j++) {
-    P[j][0] = f.p[j][0] * k->inv_h;
-    P[j][1] = f.p[j][1] * k->inv_h;
+    P[j][0] = f->p[j][0] * k->inv_h;
+    P[j][1] = f->p[j][1] * k->inv_h;
   }
   /* Cull on the bounding circle of the triangle before the edge integrals. */
   const double cx = (P[0][0] + P[1][0] + P[2][0]) / 3.0, cy = (P[0][1] + P[1][1] + P[2][1]) / 3.0;
-  double rad2 = 0.0;
-  for (int j = 0; j < 3; j++) {
-    const double ux = P[j][0] - cx, uy = P[j][1] - cy;
-    rad2 = fmax(rad2, ux * ux + uy * uy);
+  double rad;
+  if (ax) {
+    rad = ax->rad * k->inv_h;
+  } else {
+    double rad2 = 0.0;
+    for (int j = 0; j < 3; j++) {
+      const double ux = P[j][0] - cx, uy = P[j][1] - cy;
+      rad2 = fmax(rad2, ux * ux + uy * uy);
+    }
+    rad = sqrt(rad2);
   }
-  const double reach = sqrt(t.R2) + sqrt(rad2);
+  const double reach = sqrt(t.R2) + rad;
   if (cx * cx + cy * cy >= reach * reach) return; /* a is off s: not `on` either */
   struct edge_geom g[3];
   int cut = 0;
   for (int j = 0; j < 3; j++) {
-    edge_geometry(&t, P[j], P[(j + 1) % 3], &g[j]);
+    edge_geometry(&t, P[j], P[(j + 1) % 3], ax ? ax->dir[j] : NULL, &g[j]);
     cut |= g[j].in;
   }
   double iw = 0.0, ig = 0.0;
@@ -346,9 +380,10 @@ static void element_in_frame(const struct sph_kernel *k, const double *a,
     iw = t.out_w * full;
     ig = t.out_g * full;
   }
-  const double gw = f.sigma * SPH_WENDLAND_ALPHA3 * k->inv_h * iw;
-  for (int i = 0; i < 3; i++) grad[i] = gw * e->normal[i];
-  *term = on ? limit_term(k, a, e, &f, m) : f.sigma * SPH_WENDLAND_ALPHA3 * ig;
+  const double gw = f->sigma * SPH_WENDLAND_ALPHA3 * k->inv_h * iw;
+  const double *normal = ax ? ax->normal : e->normal;
+  for (int i = 0; i < 3; i++) grad[i] = gw * normal[i];
+  *term = on ? limit_term(k, a, e, f, m) : f->sigma * SPH_WENDLAND_ALPHA3 * ig;
 }
 
 void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
@@ -356,7 +391,7 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
                          double grad[3]) {
   struct tri_frame f;
   frame(e, a, &f);
-  element_in_frame(k, a, e, &f, m, NULL, term, grad);
+  element_in_frame(k, a, e, NULL, &f, m, NULL, term, grad);
 }
 
 /* Squared distance from the origin to the triangle p[0..2] of the plane (orientation sigma): 0
@@ -386,12 +421,37 @@ void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct 
   *off = f.delta;
   *dist = sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
   if (*dist < 2.0 * k->h) {
-    element_in_frame(k, a, e, &f, NULL, sh, term, grad);
+    element_in_frame(k, a, e, ax, &f, NULL, sh, term, grad);
   } else {
     if (sh) sh->got = 0;
     *term = 0.0;
     grad[0] = grad[1] = grad[2] = 0.0;
   }
+}
+
+int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
+                            const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
+                            double grad[3], double *dist, double *off) {
+  struct tri_frame f;
+  f.delta = dot3(d, ax->nu);
+  if (fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * k->h) return 1; /* on the plane: the vertices */
+  const double au = dot3(d, ax->e1), av = dot3(d, ax->e2);
+  for (int j = 0; j < 3; j++) {
+    f.nu[j] = ax->nu[j];
+    f.p[j][0] = ax->u[j][0] - au;
+    f.p[j][1] = ax->u[j][1] - av;
+  }
+  f.sigma = ax->sigma;
+  *off = f.delta;
+  *dist = sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
+  if (*dist < 2.0 * k->h) {
+    element_in_frame(k, NULL, NULL, ax, &f, NULL, sh, term, grad);
+  } else {
+    if (sh) sh->got = 0;
+    *term = 0.0;
+    grad[0] = grad[1] = grad[2] = 0.0;
+  }
+  return 0;
 }
 
 int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,

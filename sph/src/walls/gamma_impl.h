@@ -27,6 +27,11 @@ void sph_gamma3d_element(const struct sph_kernel *k, const double *a,
  * counter-clockwise about nu, else −1. */
 struct sph_tri_axes {
   double nu[3], e1[3], e2[3], sigma;
+  double x0[3];     /* the first vertex [m] */
+  double normal[3]; /* the element's unit normal (as given) */
+  double u[3][2];   /* the vertices in the frame (e1, e2), relative to x0 [m] */
+  double dir[3][2]; /* unit direction of edge j → j+1 in the frame */
+  double rad;       /* largest distance from the centroid to a vertex [m] */
 };
 void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax);
 
@@ -54,6 +59,19 @@ struct sph_edge_share {
 void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct sph_wall_element *e,
                       const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
                       double grad[3], double *dist, double *off);
+
+/*
+ * The same from the offset d = a − x0 of the point from the triangle's first vertex (ax->x0; the
+ * minimum image in a periodic domain), without the element's vertices: the frame at a is the
+ * precomputed one shifted by d (three dot products), the edges' directions and the bounding circle
+ * are the element's. Returns 0, or 1 with nothing computed when a lies within
+ * SPH_GAMMA_PLANE_TOL·h of the triangle's plane, where the one-sided limit needs the vertices: the
+ * caller then uses sph_gamma3d_pair. Agrees with sph_gamma3d_pair to round-off
+ * (tests/sph/test_gamma.c).
+ */
+int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
+                            const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
+                            double grad[3], double *dist, double *off);
 
 /*
  * Whether a lies on the closed element: within SPH_GAMMA_PLANE_TOL·h of its plane and within tol of

@@ -62,6 +62,9 @@ struct sph_nbrs {
   struct sph_row_slot *row_slot; /**< 3D: per thread and segment, its place in the row summed */
   size_t cap_slots, stamp;
   size_t edges_shared; /**< 3D: edge integrals the last sph_nbrs_gamma took from a neighbour */
+  struct sph_edge_share *row_share; /**< per thread, the edge values of the row being summed */
+  double *row_dist;                 /**< per thread, the distances to the row's elements */
+  size_t cap_row;                   /**< entries of row_share and row_dist (kept between calls) */
   /* After sph_nbrs_gamma, from the side test at those positions: */
   unsigned char *behind; /**< per fluid particle: 1 if behind its nearest wall element(s), else 0 */
   size_t cap_behind;

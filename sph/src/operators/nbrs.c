@@ -252,10 +252,16 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
 #ifdef _OPENMP
   nthreads = omp_get_max_threads();
 #endif
-  struct sph_edge_share *rows =
-      share ? cmn_malloc((maxrow + 1) * (size_t)nthreads * sizeof *rows) : NULL;
-  /* per thread, the distances to the elements of the row being summed (side test) */
-  double *dists = cmn_malloc((maxrow + 1) * (size_t)nthreads * sizeof *dists);
+  /* per thread, the edge values and the distances to the elements of the row being summed (side
+   * test): kept in nb, so that a step allocates nothing once they have grown */
+  const size_t need = (maxrow + 1) * (size_t)nthreads;
+  if (need > nb->cap_row || !nb->row_dist) {
+    nb->cap_row = need + need / 4;
+    nb->row_share = cmn_realloc(nb->row_share, nb->cap_row * sizeof *nb->row_share);
+    nb->row_dist = cmn_realloc(nb->row_dist, nb->cap_row * sizeof *nb->row_dist);
+  }
+  struct sph_edge_share *rows = share ? nb->row_share : NULL;
+  double *dists = nb->row_dist;
   const size_t nseg = s->part[SPH_KIND_SEGMENT].n;
   if (share && nseg * (size_t)nthreads > nb->cap_slots) { /* fresh slots: stamps start at 1 */
     free(nb->row_slot);
@@ -296,8 +302,6 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
     }
     behind[a] = (unsigned char)sum_row(nb, f, a, dist, sph_kernel_support(k));
   }
-  free(rows);
-  free(dists);
   nb->edges_shared = shared;
   /* Every particle behind a wall is flagged; the count and the lowest index come from the flags
    * in index order, so they do not depend on the thread count. */
@@ -367,5 +371,7 @@ void sph_nbrs_free(struct sph_nbrs *nb) {
   free(nb->tri_axes);
   free(nb->edge_link);
   free(nb->row_slot);
+  free(nb->row_share);
+  free(nb->row_dist);
   memset(nb, 0, sizeof *nb);
 }

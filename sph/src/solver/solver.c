@@ -503,7 +503,7 @@ double sph_solver_timestep(const struct sph_solver *sv) {
 
 /* Σ_{b∈P} m_b w_ab of fluid particle a over its fluid and vertex neighbours, at the positions x of
  * the fluid (x0 or the store's) and the vertices' own; pairs beyond the support add +0. */
-static double sum_w(const struct sph_solver *sv, size_t a, const double *const x[3]) {
+static double kernel_sum(const struct sph_solver *sv, size_t a, const double *const x[3]) {
   const struct sph_system *s = &sv->sys;
   const struct sph_kernel *k = &sv->kernel;
   const double support = sph_kernel_support(k);
@@ -543,13 +543,13 @@ static void continuity_impl(struct sph_solver *sv, double fac, int corrector) {
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
   for (size_t a = 0; a < f->n; a++) {
-    if (need0) sum0[a] = sum_w(sv, a, xold);
+    if (need0) sum0[a] = kernel_sum(sv, a, xold);
     if (sph_open_exit_segment(sv->open, sv, a) >= 0) { /* leaving: density kept (§10) */
       f->rho[a] = sv->rho_n[a];
       if (corrector) sum1[a] = 0.0;
       continue;
     }
-    const double now = sum_w(sv, a, xnow);
+    const double now = kernel_sum(sv, a, xnow);
     if (corrector) sum1[a] = now;
     const double xa0[3] = {sv->x0[0][a], sv->x0[1][a], sv->x0[2][a]};
     double dsum = now - sum0[a];

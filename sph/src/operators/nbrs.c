@@ -133,8 +133,8 @@ static void build(struct sph_nbrs *nb, const struct sph_system *s, double skin, 
       nb->cap_axes = seg->n;
       nb->tri_axes = cmn_realloc(nb->tri_axes, seg->n * sizeof *nb->tri_axes);
     }
+    const struct sph_parts *vx = &s->part[SPH_KIND_VERTEX];
     for (size_t j = 0; j < seg->n; j++) {
-      const struct sph_parts *vx = &s->part[SPH_KIND_VERTEX];
       const size_t iv = seg->vertex[0][j];
       const double near[3] = {vx->x[0][iv], vx->x[1][iv], vx->x[2][iv]};
       struct sph_wall_element e;

@@ -350,9 +350,10 @@ static void boundary_values_impl(struct sph_solver *sv) {
 /* ------------------------------------------------------------------------------------------- */
 
 /* One fluid pair's term of the volume-diffusion rate D_a = d(γ_a ρ_a)/dt of M(84) (Ferrari/η) or
- * of the Brezzi-type term (before its factor Λ), pr the pair's geometry (r_ab ≠ 0). */
+ * of the Brezzi-type term (before its factor Λ), pr the pair's geometry (r_ab ≠ 0); cab_r_eta:
+ * c_ab r_ab of diffusion_speed eta, 2 c0 Δr/η (the same for every pair). */
 static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
-                             const struct sph_pair *pr) {
+                             const struct sph_pair *pr, double cab_r_eta) {
   const struct sph_config *cfg = &sv->cfg;
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
@@ -372,7 +373,7 @@ static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
       const double ca = sv->csound[a], cb = sv->csound[b];
       cab_r = (ca > cb ? ca : cb) * pr->dist; /* M(50) */
     } else {
-      cab_r = 2.0 * (c0 * sv->sys.dr / cfg->eta); /* r_ab c_ab = 2K, K = c0 Δr/η, M(52), M(48) */
+      cab_r = cab_r_eta; /* r_ab c_ab = 2K, K = c0 Δr/η, M(52), M(48) */
     }
     return f->mass[b] * cab_r * pr->dwdr_over_r * varrho / f->rho[b];
   }
@@ -393,6 +394,7 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
   const double k = sv->cfg.grad_k, rho_a = f->rho[a], pa = f->p[a];
   const double *mu = sv->mu[SPH_KIND_FLUID], mu_a = mu[a];
   const int diffusion = sv->cfg.diffusion != SPH_DIFFUSION_NONE;
+  const double cab_r_eta = 2.0 * (sv->cfg.c0 * s->dr / sv->cfg.eta);
   double dsum = 0.0;
   for (int c = 0; c < 3; c++) g[c] = l[c] = 0.0;
   for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
@@ -409,10 +411,10 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
     if (viscous) {
       const double bsum = mu_a + mu[b];
       const double bbar = bsum > 0.0 ? 2.0 * mu_a * mu[b] / bsum : 0.0; /* J(9) */
-      const double tl = f->mass[b] / rho_b * 2.0 * bbar * pr.dwdr_over_r;
+      const double tl = vb * 2.0 * bbar * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) l[c] += tl * (f->v[c][a] - f->v[c][b]);
     }
-    if (diffusion) dsum += diffusion_pair(sv, a, b, &pr);
+    if (diffusion) dsum += diffusion_pair(sv, a, b, &pr, cab_r_eta);
   }
   /* The Brezzi-type term takes its time scale Δt in continuity(). */
   if (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI) dsum *= sv->cfg.brezzi_lambda;

@@ -1,10 +1,14 @@
 /*
- * The walls push the fluid but never pull it (docs/sph-solver.md §4, operators/pressure.h):
+ * A wall does not pull a particle that moves towards it (docs/sph-solver.md §4,
+ * operators/pressure.h):
  * - in a closed tank at a uniform pressure p (no gravity), the first column Δr from a side wall is
  *   pushed away from it when p > 0 (the zeroth-order defect of §2 times 2p) and, with the plain
  *   Grad^{γ,k} of M(37), pulled into it when p < 0; the momentum equation's pressure gradient
- * leaves out the wall pairs with a negative pressure sum, so that the column is not pulled, and
- * equals M(37) to the last bit where no wall sum is negative;
+ *   leaves out the wall pairs with a negative pressure sum while the particle does not move away
+ *   from the element, so that the column at rest is not pulled, a receding one is held back as
+ *   M(37) holds it, and the result equals M(37) to the last bit where no wall sum is negative;
+ * - what is left out never does negative work: for any velocities, v_a·(a_a − a_a^M37) ≤ 0 at
+ *   every particle (fixed walls), so the rule adds no kinetic energy to M(37)'s;
  * - the contact line of a collapsing viscous column (the reproducer of issue 5, coarser): the
  *   particle at the top of the column next to the wall, in slight tension and held by the wall
  *   shear stress M(19–20), drifted into the wall and the run stopped (ρ/ρ0 < 0.5); it now stays
@@ -54,7 +58,7 @@ static void test_uniform_pressure(void **state) {
       const double ax_plain = -g[0] / f->rho[a], ax = sv.acc[0][a];
       assert_rel(ax, -gp[0] / f->rho[a], 1e-12);
       if (j == NY / 2)
-        print_message("p = %+g Pa: a_x of the first column: M(37) %+.4f, walls push only %+.4f\n",
+        print_message("p = %+g Pa: a_x of the first column at rest: M(37) %+.4f, no pull %+.4f\n",
                       p0, ax_plain, ax);
       if (sign > 0) {
         /* No negative wall sum: the same bits as M(37); the defect pushes off the wall. */
@@ -62,11 +66,75 @@ static void test_uniform_pressure(void **state) {
         assert_true(ax > 0.5);
       } else {
         assert_true(ax_plain < -0.5); /* M(37): pulled into the wall by 2p times the defect */
-        assert_true(ax > 0.5);        /* now: pulled towards its fluid neighbours */
+        assert_true(ax > 0.5);        /* at rest: pulled towards its fluid neighbours */
+        /* moving away from the wall (rows out of the floor's reach): held back as M(37) holds
+         * it, the same bits */
+        f->v[0][a] = 0.2;
+        sph_op_grad_pressure(&op, cfg.grad_k, pk, a, NULL, 0, NULL, gp);
+        if (j >= 4)
+          for (int c = 0; c < 3; c++) assert_true(g[c] == gp[c]);
+        /* moving towards it: not pulled */
+        f->v[0][a] = -0.2;
+        sph_op_grad_pressure(&op, cfg.grad_k, pk, a, NULL, 0, NULL, gp);
+        assert_true(-gp[0] / f->rho[a] > 0.5);
+        f->v[0][a] = 0.0;
       }
     }
     sph_solver_free(&sv);
   }
+}
+
+/* The pulls left out never do negative work: at a uniform negative pressure with random
+ * velocities, v_a·(a_a − a_a^M37) ≤ 0 at every particle and < 0 at some; particles next to a wall
+ * that move straight away from it keep M(37) to the last bit. */
+static void test_no_pull_power(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_config cfg;
+  fixture_config(&cfg);
+  cfg.diffusion = SPH_DIFFUSION_NONE;
+  struct sph_solver sv;
+  box(&sv, &cfg, 0.01, 0.2, 0.2, NX, NY);
+  struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
+  for (size_t a = 0; a < f->n; a++) f->rho[a] = rmn_eos_density(&sv.eos, -412.5);
+  sph_solver_sync(&sv);
+  sph_solver_evaluate(&sv);
+  unsigned rng = 12345u;
+  for (size_t a = 0; a < f->n; a++)
+    for (int c = 0; c < 2; c++) {
+      rng = rng * 1664525u + 1013904223u;
+      f->v[c][a] = 0.3 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
+    }
+  /* the first column out of the floor's and the lid's reach moves straight away from its wall */
+  for (int j = 4; j < NY - 4; j++) {
+    f->v[0][(size_t)(j * NX)] = 0.2;
+    f->v[1][(size_t)(j * NX)] = 0.0;
+  }
+  const double *pk[SPH_NKINDS] = {sv.sys.part[0].p, sv.sys.part[1].p, sv.sys.part[2].p};
+  const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+  int cut = 0, kept = 0;
+  double least = 0.0;
+  for (size_t a = 0; a < f->n; a++) {
+    double g[3], gp[3];
+    sph_op_grad(&op, cfg.grad_k, pk, a, g);
+    sph_op_grad_pressure(&op, cfg.grad_k, pk, a, NULL, 0, NULL, gp);
+    /* power of the difference of the accelerations −(gp − g)/ρ_a on v_a */
+    double pw = 0.0;
+    for (int c = 0; c < 3; c++) pw -= (gp[c] - g[c]) * f->v[c][a] / f->rho[a];
+    const int walls =
+        sv.nb.list[SPH_KIND_SEGMENT].offset[a + 1] > sv.nb.list[SPH_KIND_SEGMENT].offset[a];
+    assert_true(pw <= 1e-12 * fabs(g[0] * f->v[0][a] + g[1] * f->v[1][a]) / f->rho[a]);
+    if (pw < 0.0) cut++;
+    if (walls && g[0] == gp[0] && g[1] == gp[1]) kept++;
+    least = fmin(least, pw);
+  }
+  print_message(
+      "no pull: %d of %zu particles lose power (least %.3g W/kg), %d next to a wall "
+      "keep M(37) exactly\n",
+      cut, f->n, least, kept);
+  assert_true(cut > 10);
+  assert_true(kept >= NY - 8);
+  sph_solver_free(&sv);
 }
 
 /* A viscous column collapsing in a tank (issue 5, at 2Δr): the top particles next to the left
@@ -177,6 +245,7 @@ static void test_wall_impedance(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_uniform_pressure),
+      cmocka_unit_test(test_no_pull_power),
       cmocka_unit_test(test_contact_line),
       cmocka_unit_test(test_wall_impedance),
   };

@@ -1,9 +1,10 @@
 /*
  * Boundary-corrected SPH operators at a fluid particle (THEORY §3.2, docs/sph-solver.md §2):
  * Grad^{γ,k} M(37) (k = 1: J 6 / M 11), Div^{γ,k} M(38) (k = 1: J 7 / M 8), Lap^γ J(8) with the
- * harmonic mean J(9); the momentum equation's pressure gradient, in which the walls push but never
- * pull (operators/pressure.h). Gather form: particle a sums over its neighbours, deterministic for
- * a fixed thread count. The pair geometry is shared with the solver through operators/pair.h.
+ * harmonic mean J(9); the momentum equation's pressure gradient, in which a wall does not pull a
+ * particle that moves towards it (operators/pressure.h). Gather form: particle a sums over its
+ * neighbours, deterministic for a fixed thread count. The pair geometry is shared with the solver
+ * through operators/pair.h.
  */
 #include <math.h>
 
@@ -11,8 +12,6 @@
 #include "operators/pressure.h"
 #include "sabre/sph_solver.h"
 
-/* Grad^{γ,k}_a(f), M(37); with push_only, a wall pair (vertex or segment) whose weighted sum
- * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out (sph_op_grad_pressure). */
 /* Relative normal velocity (v_a − v_w)·n/|n| of fluid particle a towards wall element j of pw
  * (n into the fluid: negative when a approaches the wall). */
 static double approach(const struct sph_parts *pa, size_t a, const struct sph_parts *pw, size_t j) {
@@ -38,10 +37,37 @@ double sph_op_open_share(const struct sph_op *op, size_t a) {
   return all > 0.0 ? open / all : 0.0;
 }
 
-/* g_fluid (NULL: none): the sum over the fluid pairs already formed by the caller (same pairs,
+/* The velocity of wall element j of pw as it moves [m/s]: its own for walls, 0 for open elements
+ * (fixed in space; their velocity is the fluid's at the boundary, from their Riemann solve). */
+static double motion(const struct sph_parts *pw, size_t j, int c) {
+  return pw->flags[j] & SPH_FLAG_OPEN ? 0.0 : pw->v[c][j];
+}
+
+/* (v_a − v_b)·(r_a − r_b) for fluid particle a and vertex b at separation r = r_a − r_b (v_b its
+ * motion): not positive when a does not move away from b. */
+static double closing_vertex(const struct sph_parts *pa, size_t a, const struct sph_parts *pb,
+                             size_t b, const double r[3]) {
+  double s = 0.0;
+  for (int c = 0; c < 3; c++) s += (pa->v[c][a] - motion(pb, b, c)) * r[c];
+  return s;
+}
+
+/* (v_a − v_s)·n_s for fluid particle a and segment j (v_s its motion, n_s into the fluid): not
+ * positive when a does not move away from the segment's plane. */
+static double closing_segment(const struct sph_parts *pa, size_t a, const struct sph_parts *ps,
+                              size_t j) {
+  double s = 0.0;
+  for (int c = 0; c < 3; c++) s += (pa->v[c][a] - motion(ps, j, c)) * ps->normal[c][j];
+  return s;
+}
+
+/* Grad^{γ,k}_a(f), M(37); with no_pull, a wall pair (vertex or segment) whose weighted sum
+ * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out while a does not move away from the
+ * element (sph_op_grad_pressure): a pull that would do work ≥ 0 on the pair's relative motion.
+ * g_fluid (NULL: none): the sum over the fluid pairs already formed by the caller (same pairs,
  * order and arithmetic); the sum then goes on over the vertices and segments only. */
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int push_only, const double *impedance, int open_difference,
+                 int no_pull, const double *impedance, int open_difference,
                  const struct sph_vertex_layer *layer, const double *g_fluid, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
@@ -67,7 +93,9 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
         if (un < 0.0) fb -= impedance[a] * un;
       }
       double sum = ratio * fb + fa / ratio;
-      if (push_only && kind == SPH_KIND_VERTEX && sum < 0.0) continue;
+      if (no_pull && kind == SPH_KIND_VERTEX && sum < 0.0 &&
+          closing_vertex(pa, a, pb, b, pr.r) <= 0.0)
+        continue;
       if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
       const double lv = layer && kind == SPH_KIND_VERTEX ? layer->vol[b] : 0.0;
       const double t = (vb - lv) * sum * pr.dwdr_over_r;
@@ -97,7 +125,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       if (un < 0.0) fs -= impedance[a] * un;
     }
     double t = ratio * fs + fa / ratio;
-    if (push_only && t < 0.0) continue;
+    if (no_pull && t < 0.0 && closing_segment(pa, a, ps, j) <= 0.0) continue;
     if (fc != 0.0) t -= fc * (ratio + 1.0 / ratio);
     for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
   }

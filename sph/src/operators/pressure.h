@@ -1,7 +1,7 @@
 /*
  * The pressure gradient of the momentum equation M(14) (docs/sph-solver.md §4): Grad^{γ,k} of
- * M(37) in which the wall, i.e. its vertex particles and its segments, pushes the fluid but never
- * pulls it.
+ * M(37) in which a wall, i.e. its vertex particles and its segments, does not pull a particle that
+ * moves towards it.
  */
 #ifndef SPH_OPERATORS_PRESSURE_H
 #define SPH_OPERATORS_PRESSURE_H
@@ -11,14 +11,20 @@
 #include "sabre/sph_solver.h"
 
 /**
- * Grad^{γ,k}_a(p), M(37) [Pa/m], with every wall pair left out whose pressure sum is negative:
- * a vertex v with (ρ_a/ρ_v)^k p_v + (ρ_v/ρ_a)^k p_a < 0 and a segment s with
- * (ρ_a/ρ_s)^k p_s + (ρ_s/ρ_a)^k p_a < 0. With p_a + p_wall < 0 those terms pull particle a into
- * the wall (the wall term of a constant field p is p times the zeroth-order defect of §2, which
- * points out of the fluid), and nothing else stops it: as a particle whose fluid neighbours
- * recede (a free surface at a wall) moves into the wall, γ_a falls with Σ m_b w_ab and its
- * density stays at ρ0. Fluid–fluid pairs are kept as they are. Equals sph_op_grad() wherever
- * the wall pressure sums are ≥ 0 (still water below its surface).
+ * Grad^{γ,k}_a(p), M(37) [Pa/m], with every wall pair left out whose pressure sum is negative
+ * while particle a does not move away from the element: a vertex v with
+ * (ρ_a/ρ_v)^k p_v + (ρ_v/ρ_a)^k p_a < 0 and (v_a − v_v)·(r_a − r_v) ≤ 0, a segment s with
+ * (ρ_a/ρ_s)^k p_s + (ρ_s/ρ_a)^k p_a < 0 and (v_a − v_s)·n_s ≤ 0 (n_s into the fluid; v_v, v_s
+ * the elements' own motion: a wall's velocity, 0 for open elements, which are fixed in space and
+ * whose stored velocity is the fluid's at the boundary). With
+ * p_a + p_wall < 0 those terms pull particle a towards the element (the wall term of a constant
+ * field p is p times the zeroth-order defect of §2, which points out of the fluid), and nothing
+ * else stops it: as a particle whose fluid neighbours recede (a free surface at a wall) moves
+ * into the wall, γ_a falls with Σ m_b w_ab and its density stays at ρ0. A pull left out would
+ * have done work ≥ 0 on the pair's relative motion (the force of a vertex pair is along r_a − r_v,
+ * that of a segment along n_s), so the rule never adds kinetic energy to that of M(37); a
+ * receding particle is held back as M(37) holds it. Fluid–fluid pairs are kept as they are.
+ * Equals sph_op_grad() wherever the wall pressure sums are ≥ 0 (still water below its surface).
  *
  * impedance (NULL: none) [kg/m²/s], per fluid particle: Z_a = ρ_a c_a. When given, the wall value
  * of a pair whose fluid particle approaches the element, u_n = (v_a − v_w)·n < 0 (n the element's

@@ -458,7 +458,7 @@ static void forces_impl(struct sph_solver *sv) {
     const int diffo = sv->cfg.open_gradient_difference;
     const double fc = diffo ? sph_op_open_share(&op, a) * pk[SPH_KIND_FLUID][a] : 0.0;
     sv->diff[a] = fluid_pairs(sv, a, fc, viscous, gf, lf);
-    /* walls push, never pull; with numerics.wall_impedance, harder on an approaching particle */
+    /* no wall pulls an approaching particle; with numerics.wall_impedance, harder push on it */
     sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a,
                                sv->cfg.wall_impedance ? sv->impedance : NULL, diffo,
                                use_layer ? &layer : NULL, gf, gp);

@@ -294,6 +294,8 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->rho_n);
   free(sv->sum_w[0]);
   free(sv->sum_w[1]);
+  free(sv->sum_wf[0]);
+  free(sv->sum_wf[1]);
   free(sv->gamma_n);
   free(sv->diff);
   free(sv->csound);

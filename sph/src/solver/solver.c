@@ -36,6 +36,8 @@ static void grow_arrays(struct sph_solver *sv) {
       sv->rho_n = grow(sv->rho_n, cap);
       sv->sum_w[0] = grow(sv->sum_w[0], cap);
       sv->sum_w[1] = grow(sv->sum_w[1], cap);
+      sv->sum_wf[0] = grow(sv->sum_wf[0], cap);
+      sv->sum_wf[1] = grow(sv->sum_wf[1], cap);
       sv->gamma_n = grow(sv->gamma_n, cap);
       sv->diff = grow(sv->diff, cap);
       sv->csound = grow(sv->csound, cap);
@@ -51,6 +53,7 @@ void sph_solver_sync(struct sph_solver *sv) {
   sv->gamma_current = 0;
   sv->lists_valid = 0;
   sv->sum_w_valid = 0;
+  sv->sum_wf_valid = 0;
 }
 
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
@@ -503,27 +506,28 @@ double sph_solver_timestep(const struct sph_solver *sv) {
 
 /* ------------------------------------------------------------------------------------------- */
 
-/* Σ_{b∈P} m_b w_ab of fluid particle a over its fluid and vertex neighbours, at the positions x of
- * the fluid (x0 or the store's) and the vertices' own; pairs beyond the support add +0. */
-static double kernel_sum(const struct sph_solver *sv, size_t a, const double *const x[3]) {
+/* start + Σ_b m_b w_ab of fluid particle a over its neighbours of one kind (fluid or vertex), at
+ * the positions x of the fluid (x0 or the store's) and the vertices' own; pairs beyond the support
+ * add +0. The sum over P = F ∪ V is kernel_sum(VERTEX, kernel_sum(FLUID, 0)): the vertex part
+ * goes on from the fluid part, so a fluid part kept from earlier gives the same bits. */
+static double kernel_sum(const struct sph_solver *sv, size_t a, const double *const x[3], int kind,
+                         double start) {
   const struct sph_system *s = &sv->sys;
   const struct sph_kernel *k = &sv->kernel;
   const double support = sph_kernel_support(k);
   const double xa[3] = {x[0][a], x[1][a], x[2][a]};
-  double sum = 0.0;
-  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
-    const struct sph_parts *pb = &s->part[kind];
-    const struct sph_nlist *nl = &sv->nb.list[kind];
-    const double *const *xk = kind == SPH_KIND_FLUID ? x : (const double *const *)pb->x;
-    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-      const size_t b = nl->index[q];
-      const double xb[3] = {xk[0][b], xk[1][b], xk[2][b]};
-      double d[3];
-      sph_domain_delta(&s->domain, xb, xa, d);
-      const double r = sqrt(dot3(d, d));
-      if (r >= support) continue;
-      sum += pb->mass[b] * sph_kernel_w_inline(k, r);
-    }
+  double sum = start;
+  const struct sph_parts *pb = &s->part[kind];
+  const struct sph_nlist *nl = &sv->nb.list[kind];
+  const double *const *xk = kind == SPH_KIND_FLUID ? x : (const double *const *)pb->x;
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    const size_t b = nl->index[q];
+    const double xb[3] = {xk[0][b], xk[1][b], xk[2][b]};
+    double d[3];
+    sph_domain_delta(&s->domain, xb, xa, d);
+    const double r = sqrt(dot3(d, d));
+    if (r >= support) continue;
+    sum += pb->mass[b] * sph_kernel_w_inline(k, r);
   }
   return sum;
 }
@@ -532,33 +536,46 @@ static double kernel_sum(const struct sph_solver *sv, size_t a, const double *co
  * vs x0. The sums at x0 (sv->sum_w[0]) are formed in the predictor and kept for the corrector;
  * without open boundaries (constant masses) they are the previous corrector's sums at the same
  * positions (sv->sum_w[1], swapped in at the end of the step), so that a step forms one sum per
- * stage. The continuity of the corrector keeps its sums in sum_w[1]. */
-static void continuity_impl(struct sph_solver *sv, double fac, int corrector) {
+ * stage. With open boundaries the vertex masses change between steps and only the fluid part is
+ * carried over (sv->sum_wf), the vertex part formed again on top of it. The continuity of the
+ * corrector keeps its sums in sum_w[1] and sum_wf[1]; it returns 1 if some particle was leaving
+ * (its sums not formed: nothing can be carried over). */
+static int continuity_impl(struct sph_solver *sv, double fac, int corrector) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double scale = fac * (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI ? sv->dt : 1.0);
-  const int need0 = !corrector && !sv->sum_w_valid;
-  double *sum0 = sv->sum_w[0], *sum1 = sv->sum_w[1];
+  const int need0 = !corrector && !sv->sum_w_valid, fluid0 = sv->sum_wf_valid;
+  double *sum0 = sv->sum_w[0], *sum1 = sv->sum_w[1], *sumf0 = sv->sum_wf[0], *sumf1 = sv->sum_wf[1];
   const double *const *xnow = (const double *const *)f->x;
   const double *const *xold = (const double *const *)sv->x0;
+  int leaving = 0;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) reduction(| : leaving)
 #endif
   for (size_t a = 0; a < f->n; a++) {
-    if (need0) sum0[a] = kernel_sum(sv, a, xold);
+    if (need0) {
+      const double sf = fluid0 ? sumf0[a] : kernel_sum(sv, a, xold, SPH_KIND_FLUID, 0.0);
+      sum0[a] = kernel_sum(sv, a, xold, SPH_KIND_VERTEX, sf);
+    }
     if (sph_open_exit_segment(sv->open, sv, a) >= 0) { /* leaving: density kept (§10) */
       f->rho[a] = sv->rho_n[a];
-      if (corrector) sum1[a] = 0.0;
+      if (corrector) sum1[a] = sumf1[a] = 0.0;
+      leaving = 1;
       continue;
     }
-    const double now = kernel_sum(sv, a, xnow);
-    if (corrector) sum1[a] = now;
+    const double nowf = kernel_sum(sv, a, xnow, SPH_KIND_FLUID, 0.0);
+    const double now = kernel_sum(sv, a, xnow, SPH_KIND_VERTEX, nowf);
+    if (corrector) {
+      sum1[a] = now;
+      sumf1[a] = nowf;
+    }
     const double xa0[3] = {sv->x0[0][a], sv->x0[1][a], sv->x0[2][a]};
     double dsum = now - sum0[a];
     /* Open boundaries: the i/o terms of J(11) (docs/sph-solver.md §10), 0 without open groups. */
     dsum += sph_open_continuity_terms(sv->open, sv, a, xa0, sv->rho_n[a], fac);
     f->rho[a] = (sv->gamma_n[a] * sv->rho_n[a] + dsum + scale * sv->diff[a]) / f->gamma[a];
   }
+  return leaving;
 }
 
 static void wrap(struct sph_solver *sv) {
@@ -629,10 +646,11 @@ void sph_solver_forces(struct sph_solver *sv) {
   timed(sv, SPH_PHASE_FORCES, t0);
 }
 
-static void continuity(struct sph_solver *sv, double fac, int corrector) {
+static int continuity(struct sph_solver *sv, double fac, int corrector) {
   const double t0 = cmn_wall_time();
-  continuity_impl(sv, fac, corrector);
+  const int leaving = continuity_impl(sv, fac, corrector);
   timed(sv, SPH_PHASE_CONTINUITY, t0);
+  return leaving;
 }
 
 void sph_solver_evaluate(struct sph_solver *sv) {
@@ -906,7 +924,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   refresh_gamma(sv);
   sv->gamma_current = 1;
   if (sv->cfg.gamma_dynamic) gamma_dynamic(sv, (const double *const *)f->v, dt);
-  continuity(sv, dt, 1);
+  const int leaving = continuity(sv, dt, 1);
   sph_open_mass_end(sv->open, sv, dt); /* m^{n+1} = m^n + Δt ṁ*, J(14) (§10) */
   if (sqrt(dmax) > 0.5 * skin(sv)) {
     snprintf(msg, msglen,
@@ -922,11 +940,16 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   int rc = check_state(sv, msg, msglen);
   const size_t nnew = sv->open_off || rc ? 0 : sph_open_create_particles(sv->open, sv);
   /* The corrector's sums are the next step's sums at x0 while the masses stay (no open
-   * boundaries) and the store is not changed by hand (sph_solver_sync drops them). */
-  double *t = sv->sum_w[0];
-  sv->sum_w[0] = sv->sum_w[1];
-  sv->sum_w[1] = t;
+   * boundaries) and the store is not changed by hand (sph_solver_sync drops them); their fluid
+   * parts while the store is not changed (fluid masses are constant) and every particle's sums
+   * were formed (none leaving). */
+  for (int k = 0; k < 2; k++) {
+    double **sw = k == 0 ? sv->sum_w : sv->sum_wf, *t = sw[0];
+    sw[0] = sw[1];
+    sw[1] = t;
+  }
   sv->sum_w_valid = sv->open == NULL && rc == 0;
+  sv->sum_wf_valid = rc == 0 && !leaving;
   if (ndel || nnew) sph_solver_sync(sv);
   sv->time += dt;
   sv->step++;

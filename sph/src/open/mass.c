@@ -21,13 +21,6 @@ void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv) {
   for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
 }
 
-/* sum += x with Kahan's compensation c (the low-order bits sum has lost). */
-static void kahan_add(double *sum, double *c, double x) {
-  const double y = x - *c, t = *sum + y;
-  *c = (t - *sum) - y;
-  *sum = t;
-}
-
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
   if (!op) return;
   const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
@@ -65,8 +58,8 @@ void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt) {
       held[op->vert_group[i]] += v->mass[i] - (op->mass0[i] + dt * op->mdot[i]);
   for (int g = 0; g < op->ngroups; g++) {
     op->mass_step[g] = dt * op->stats[g].mass_flux + held[g];
-    kahan_add(&op->mass_entered[g], &op->mass_comp[0][g], op->mass_step[g]);
-    kahan_add(&op->mass_withheld[g], &op->mass_comp[2][g], held[g]);
+    sph_open_kahan_add(&op->mass_entered[g], &op->mass_comp[0][g], op->mass_step[g]);
+    sph_open_kahan_add(&op->mass_withheld[g], &op->mass_comp[2][g], held[g]);
   }
 }
 
@@ -275,7 +268,7 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
       if (op->mdot[iv] < 0.0) { /* outflow: back towards the wall mass, the rest leaves */
         const double dm = w[d] * (op->mass_base[iv] - v->mass[iv]);
         v->mass[iv] += dm;
-        kahan_add(&op->mass_released[g], &op->mass_comp[1][g], q - dm);
+        sph_open_kahan_add(&op->mass_released[g], &op->mass_comp[1][g], q - dm);
       } else {
         v->mass[iv] += q; /* J(14) */
       }

@@ -32,20 +32,27 @@ static void box(struct sph_solver *sv, const struct sph_config *cfg, double dr, 
 
 enum { NX = 19, NY = 10 };
 
+/* The box of NX × NY particles, Δr = 0.01 m, inviscid and without diffusion, filled at the uniform
+ * pressure p0 [Pa] and evaluated (no gravity). */
+static void uniform_box(struct sph_solver *sv, struct sph_config *cfg, double p0) {
+  fixture_config(cfg);
+  cfg->diffusion = SPH_DIFFUSION_NONE;
+  box(sv, cfg, 0.01, 0.2, 0.2, NX, NY);
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  for (size_t a = 0; a < f->n; a++) f->rho[a] = rmn_eos_density(&sv->eos, p0);
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+}
+
 static void test_uniform_pressure(void **state) {
   (void)state;
   sabre_fp_traps_on();
   struct sph_config cfg;
-  fixture_config(&cfg);
-  cfg.diffusion = SPH_DIFFUSION_NONE;
   for (int sign = -1; sign <= 1; sign += 2) {
     struct sph_solver sv;
-    box(&sv, &cfg, 0.01, 0.2, 0.2, NX, NY);
-    struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
     const double p0 = sign * 412.5; /* Pa */
-    for (size_t a = 0; a < f->n; a++) f->rho[a] = rmn_eos_density(&sv.eos, p0);
-    sph_solver_sync(&sv);
-    sph_solver_evaluate(&sv);
+    uniform_box(&sv, &cfg, p0);
+    struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
     const double *pk[SPH_NKINDS] = {sv.sys.part[0].p, sv.sys.part[1].p, sv.sys.part[2].p};
     const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
     /* the first column (next to the left wall, n = +x), rows 2 .. NY − 3 (off the corners) */
@@ -91,14 +98,9 @@ static void test_no_pull_power(void **state) {
   (void)state;
   sabre_fp_traps_on();
   struct sph_config cfg;
-  fixture_config(&cfg);
-  cfg.diffusion = SPH_DIFFUSION_NONE;
   struct sph_solver sv;
-  box(&sv, &cfg, 0.01, 0.2, 0.2, NX, NY);
+  uniform_box(&sv, &cfg, -412.5);
   struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
-  for (size_t a = 0; a < f->n; a++) f->rho[a] = rmn_eos_density(&sv.eos, -412.5);
-  sph_solver_sync(&sv);
-  sph_solver_evaluate(&sv);
   unsigned rng = 12345u;
   for (size_t a = 0; a < f->n; a++)
     for (int c = 0; c < 2; c++) {

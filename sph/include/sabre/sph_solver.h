@@ -292,13 +292,11 @@ struct sph_solver {
   double *x0[3], *v0[3];   /**< fluid state at the start of the step */
   double *rho_n, *gamma_n; /**< fluid ρ^n, γ^n */
   double *sum_w[2];        /**< fluid Σ_{b∈P} m_b w_ab at x0 ([0]) and at the corrector ([1]) */
-  int sum_w_valid;         /**< sum_w[0] holds the sums at the current positions (the previous
-                                corrector's; no open boundaries, store unchanged since) */
   double *sum_wf[2];       /**< the fluid part Σ_{b∈F} m_b w_ab of sum_w, at x0 and at the
                                 corrector: the vertex part follows on from it */
-  int sum_wf_valid;        /**< sum_wf[0] holds the fluid parts at the current positions (the
-                                previous corrector's, store unchanged since; fluid masses are
-                                constant, vertex masses not with open boundaries) */
+  int sum_w_valid;         /**< sum_wf[0] holds the fluid parts at the current positions (the
+                                previous corrector's, store unchanged since), and without open
+                                boundaries (constant vertex masses) sum_w[0] the whole sums */
   double *grad_gamma_n[3]; /**< fluid ∇γ^n (for the dynamic γ) */
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */

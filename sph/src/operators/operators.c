@@ -12,19 +12,23 @@
 #include "operators/pressure.h"
 #include "sabre/sph_solver.h"
 
-/* Relative normal velocity (v_a − v_w)·n/|n| of fluid particle a towards wall element j of pw
- * (n into the fluid: negative when a approaches the wall). */
+/* The velocity of wall element j of pw as it moves [m/s]: its own for walls, 0 for open elements
+ * (fixed in space; their velocity is the fluid's at the boundary, from their Riemann solve). */
+static double motion(const struct sph_parts *pw, size_t j, int c) {
+  return pw->flags[j] & SPH_FLAG_OPEN ? 0.0 : pw->v[c][j];
+}
+
+/* Relative normal velocity (v_a − v_w)·n/|n| of fluid particle a towards wall element j of pw, v_w
+ * the element's motion (n into the fluid: negative when a approaches the element). */
 static double approach(const struct sph_parts *pa, size_t a, const struct sph_parts *pw, size_t j) {
   double un = 0.0, nn = 0.0;
   for (int c = 0; c < 3; c++) {
-    un += (pa->v[c][a] - pw->v[c][j]) * pw->normal[c][j];
+    un += (pa->v[c][a] - motion(pw, j, c)) * pw->normal[c][j];
     nn += pw->normal[c][j] * pw->normal[c][j];
   }
   return nn > 0.0 ? un / sqrt(nn) : 0.0;
 }
 
-/* χ_a: the share of the wet open segments in the wall terms of a's kernel, Σ_wet |term_as| /
- * Σ_s |term_as| (0 without segments in the support). */
 double sph_op_open_share(const struct sph_op *op, size_t a) {
   const struct sph_parts *ps = &op->sys->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
@@ -37,27 +41,12 @@ double sph_op_open_share(const struct sph_op *op, size_t a) {
   return all > 0.0 ? open / all : 0.0;
 }
 
-/* The velocity of wall element j of pw as it moves [m/s]: its own for walls, 0 for open elements
- * (fixed in space; their velocity is the fluid's at the boundary, from their Riemann solve). */
-static double motion(const struct sph_parts *pw, size_t j, int c) {
-  return pw->flags[j] & SPH_FLAG_OPEN ? 0.0 : pw->v[c][j];
-}
-
 /* (v_a − v_b)·(r_a − r_b) for fluid particle a and vertex b at separation r = r_a − r_b (v_b its
  * motion): not positive when a does not move away from b. */
 static double closing_vertex(const struct sph_parts *pa, size_t a, const struct sph_parts *pb,
                              size_t b, const double r[3]) {
   double s = 0.0;
   for (int c = 0; c < 3; c++) s += (pa->v[c][a] - motion(pb, b, c)) * r[c];
-  return s;
-}
-
-/* (v_a − v_s)·n_s for fluid particle a and segment j (v_s its motion, n_s into the fluid): not
- * positive when a does not move away from the segment's plane. */
-static double closing_segment(const struct sph_parts *pa, size_t a, const struct sph_parts *ps,
-                              size_t j) {
-  double s = 0.0;
-  for (int c = 0; c < 3; c++) s += (pa->v[c][a] - motion(ps, j, c)) * ps->normal[c][j];
   return s;
 }
 
@@ -125,7 +114,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       if (un < 0.0) fs -= impedance[a] * un;
     }
     double t = ratio * fs + fa / ratio;
-    if (no_pull && t < 0.0 && closing_segment(pa, a, ps, j) <= 0.0) continue;
+    if (no_pull && t < 0.0 && approach(pa, a, ps, j) <= 0.0) continue;
     if (fc != 0.0) t -= fc * (ratio + 1.0 / ratio);
     for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
   }

@@ -53,7 +53,6 @@ void sph_solver_sync(struct sph_solver *sv) {
   sv->gamma_current = 0;
   sv->lists_valid = 0;
   sv->sum_w_valid = 0;
-  sv->sum_wf_valid = 0;
 }
 
 static double skin(const struct sph_solver *sv) { return sv->cfg.skin_over_h * sv->sys.h; }
@@ -544,7 +543,7 @@ static int continuity_impl(struct sph_solver *sv, double fac, int corrector) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double scale = fac * (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI ? sv->dt : 1.0);
-  const int need0 = !corrector && !sv->sum_w_valid, fluid0 = sv->sum_wf_valid;
+  const int fluid0 = sv->sum_w_valid, need0 = !corrector && !(fluid0 && sv->open == NULL);
   double *sum0 = sv->sum_w[0], *sum1 = sv->sum_w[1], *sumf0 = sv->sum_wf[0], *sumf1 = sv->sum_wf[1];
   const double *const *xnow = (const double *const *)f->x;
   const double *const *xold = (const double *const *)sv->x0;
@@ -948,8 +947,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
     sw[0] = sw[1];
     sw[1] = t;
   }
-  sv->sum_w_valid = sv->open == NULL && rc == 0;
-  sv->sum_wf_valid = rc == 0 && !leaving;
+  sv->sum_w_valid = rc == 0 && !leaving;
   if (ndel || nnew) sph_solver_sync(sv);
   sv->time += dt;
   sv->step++;

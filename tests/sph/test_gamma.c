@@ -667,7 +667,9 @@ static void test_errors(void **state) {
 /* sph_gamma3d_pair (the frame's axes computed once per element, then term, ∇γ_as, the distance to
  * the triangle and to its plane from one frame) against sph_gamma_element and sph_element_distance
  * at random points around random triangles: near the plane, on it, beyond the support, over the
- * interior, edges and vertices; and sph_gamma3d_pair_offset against sph_gamma3d_pair. */
+ * interior, edges and vertices; and sph_gamma3d_pair_offset against sph_gamma3d_pair: the same
+ * term, ∇γ_as and plane distance, and the distance by sph_gamma3d_offset_distance; the lower
+ * bound sph_gamma3d_offset_bound, equal to the plane distance where a faces the triangle. */
 static void test_pair_path_3d(void **state) {
   (void)state;
   struct sabre_rng rng;
@@ -675,8 +677,8 @@ static void test_pair_path_3d(void **state) {
   struct sph_kernel k;
   sph_kernel_init(&k, 3, H);
   double worst_term = 0.0, worst_grad = 0.0, worst_dist = 0.0, worst_off = 0.0;
-  double worst_offset = 0.0;
-  int inside = 0, beyond = 0, by_offset = 0, on_plane = 0;
+  double worst_offset = 0.0, worst_bound = -INFINITY;
+  int inside = 0, beyond = 0, by_offset = 0, on_plane = 0, sharp = 0, loose = 0;
   for (int trial = 0; trial < 400; trial++) {
     struct sph_wall_element e;
     double c[3];
@@ -716,7 +718,23 @@ static void test_pair_path_3d(void **state) {
          * an edge the term (a solid angle) varies by O(1) over O(|δ|) in the plane, so the
          * paths may differ by ~1e-16 H/|δ|: the differences are scaled by min(1, |δ|/H). */
         const double cond = fmin(1.0, fabs(off) / H);
-        double dmax = fmax(fabs(term1 - term), fmax(fabs(dist1 - dist), fabs(off1 - off)) / H);
+        const double exact1 = sph_gamma3d_offset_distance(d, &ax);
+        const double bound1 = sph_gamma3d_offset_bound(d, &ax);
+        assert_true(dist1 == fabs(off1)); /* the plane distance */
+        double dmax = fmax(fabs(term1 - term), fmax(fabs(exact1 - dist), fabs(off1 - off)) / H);
+        /* the bound: never above the distance, and equal to it (the plane distance) when the
+         * point faces the triangle */
+        worst_bound = fmax(worst_bound, (bound1 - dist) / H);
+        if (b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0) {
+          assert_true(bound1 == fabs(off1));
+          sharp++;
+        }
+        /* beyond the support exactly zero, the bound below 2h or not */
+        if (dist >= 2.0 * H) {
+          assert_true(term1 == 0.0);
+          for (int i = 0; i < 3; i++) assert_true(grad1[i] == 0.0);
+          if (bound1 < 2.0 * H) loose++;
+        }
         for (int i = 0; i < 3; i++) dmax = fmax(dmax, H * fabs(grad1[i] - grad[i]));
         worst_offset = fmax(worst_offset, dmax * cond);
         by_offset++;
@@ -748,9 +766,12 @@ static void test_pair_path_3d(void **state) {
       inside, beyond, worst_term, worst_grad, worst_dist, worst_off);
   printf(
       "offset path vs pair path: %d points (%d on the plane left to the pair path), largest "
-      "difference times min(1, |δ|/h): %.1e\n",
-      by_offset, on_plane, worst_offset);
-  assert_true(by_offset > 2000 && on_plane > 100);
+      "difference times min(1, |δ|/h): %.1e; its lower bound of the distance: at most %.1e h "
+      "above it, equal to the plane distance at %d points facing the triangle, below 2h at %d "
+      "points beyond the support (zero there)\n",
+      by_offset, on_plane, worst_offset, worst_bound, sharp, loose);
+  assert_true(by_offset > 2000 && on_plane > 100 && sharp > 500 && loose > 20);
+  assert_true(worst_bound <= 1e-14);
   assert_true(worst_offset <= 1e-14);
   assert_true(inside > 1500 && beyond > 200);
   assert_true(worst_term <= 1e-14);

@@ -64,7 +64,8 @@ struct sph_nbrs {
   size_t edges_shared; /**< 3D: edge integrals the last sph_nbrs_gamma took from a neighbour */
   struct sph_edge_share *row_share; /**< per thread, the edge values of the row being summed */
   double *row_dist;                 /**< per thread, the distances to the row's elements */
-  size_t cap_row;                   /**< entries of row_share and row_dist (kept between calls) */
+  unsigned char *row_exact;         /**< per thread, 1 where row_dist is exact, 0 a lower bound */
+  size_t cap_row; /**< entries of row_share, row_dist and row_exact (kept between calls) */
   /* After sph_nbrs_gamma, from the side test at those positions: */
   unsigned char *behind; /**< per fluid particle: 1 if behind its nearest wall element(s), else 0 */
   size_t cap_behind;

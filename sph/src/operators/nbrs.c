@@ -155,23 +155,24 @@ void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, doubl
 }
 
 /* Wall data of pair p (fluid a, segment j): γ term, ∇γ_as, distance to the element and to its
- * plane (signed, > 0 on the fluid side). */
-static void pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
-                      const struct sph_kernel *k, size_t a, size_t j, struct sph_edge_share *sh,
-                      double *term, double gs[3], double *dist, double *off) {
+ * plane (signed, > 0 on the fluid side). Returns 1 if *dist is the distance, 0 if it is a lower
+ * bound of it (3D off the triangle's plane: settle_distances measures where needed). */
+static int pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
+                     const struct sph_kernel *k, size_t a, size_t j, struct sph_edge_share *sh,
+                     double *term, double gs[3], double *dist, double *off) {
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID], *seg = &s->part[SPH_KIND_SEGMENT];
   const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
   if (s->dim == 3) { /* the triangle's precomputed frame, shifted to a (the hot path of 3D runs) */
     double d[3];
     sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
-    if (sph_gamma3d_pair_offset(k, d, &nb->tri_axes[j], sh, term, gs, dist, off) == 0) return;
+    if (sph_gamma3d_pair_offset(k, d, &nb->tri_axes[j], sh, term, gs, dist, off) == 0) return 0;
   }
   struct sph_wall_element e;
   sph_segment_vertices(s, j, xa, e.x);
   for (int c = 0; c < 3; c++) e.normal[c] = seg->normal[c][j];
   if (s->dim == 3) { /* a on the triangle's plane: the frame from the vertices */
     sph_gamma3d_pair(k, xa, &e, &nb->tri_axes[j], sh, term, gs, dist, off);
-    return;
+    return 1;
   }
   double q[3];
   *dist = sph_element_distance(s->dim, (const double(*)[3])e.x, xa, q);
@@ -180,6 +181,67 @@ static void pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
   *term = 0.0;
   gs[0] = gs[1] = gs[2] = 0.0;
   if (*dist < sph_kernel_support(k)) sph_gamma_element(k, xa, &e, term, gs);
+  return 1;
+}
+
+static const struct sph_tri_axes *pair_axes(const struct sph_nbrs *nb, const struct sph_system *s,
+                                            size_t a, size_t j, double d[3]) {
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
+  return &nb->tri_axes[j];
+}
+
+/* The side test (sum_row) reads the distances of the nearest elements within the support only.
+ * Where pair_wall gave the plane distance as a lower bound (exact[i] = 0), the distance is
+ * computed only for the elements that may be among the nearest: an element of zero term and
+ * ∇γ_as is beyond the support; the one of largest ∇γ_as is measured first; any other is measured
+ * when its plane distance, then its bounding-circle bound, are within 4e-9 (relative) of the
+ * least distance found so far (sum_row's ties are 1e-9 wide), and the rest are set beyond the
+ * support: sum_row then decides as it would with every distance exact. */
+static void settle_distances(const struct sph_nbrs *nb, const struct sph_system *s, size_t a,
+                             double *dist, unsigned char *exact, double support) {
+  const struct sph_nlist *nl = &nb->list[SPH_KIND_SEGMENT];
+  const size_t first = nl->offset[a], n = nl->offset[a + 1] - first;
+  const double tie = 1.0 + 4e-9;
+  double best = INFINITY, gmax = 0.0, d[3];
+  size_t at = n;
+  for (size_t i = 0; i < n; i++) {
+    if (exact[i]) {
+      best = fmin(best, dist[i]);
+      continue;
+    }
+    const size_t p = first + i;
+    const double g2 = nb->grad_gamma_as[0][p] * nb->grad_gamma_as[0][p] +
+                      nb->grad_gamma_as[1][p] * nb->grad_gamma_as[1][p] +
+                      nb->grad_gamma_as[2][p] * nb->grad_gamma_as[2][p];
+    if (g2 == 0.0 && nb->term_as[p] == 0.0) {
+      dist[i] = INFINITY;
+      exact[i] = 1;
+    } else if (g2 > gmax) {
+      gmax = g2;
+      at = i;
+    }
+  }
+  if (at < n) {
+    const struct sph_tri_axes *ax = pair_axes(nb, s, a, nl->index[first + at], d);
+    dist[at] = sph_gamma3d_offset_distance(d, ax);
+    exact[at] = 1;
+    best = fmin(best, dist[at]);
+  }
+  for (size_t i = 0; i < n; i++) {
+    if (exact[i]) continue;
+    if (dist[i] < support && dist[i] <= best * tie) {
+      const struct sph_tri_axes *ax = pair_axes(nb, s, a, nl->index[first + i], d);
+      const double lb = sph_gamma3d_offset_bound(d, ax);
+      if (lb < support && lb <= best * tie) {
+        dist[i] = sph_gamma3d_offset_distance(d, ax);
+        best = fmin(best, dist[i]);
+        continue;
+      }
+    }
+    dist[i] = INFINITY;
+  }
 }
 
 /* γ_a, ∇γ_a and the side test from the pair data of row a (dist: the distances to the row's
@@ -259,6 +321,7 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
     nb->cap_row = need + need / 4;
     nb->row_share = cmn_realloc(nb->row_share, nb->cap_row * sizeof *nb->row_share);
     nb->row_dist = cmn_realloc(nb->row_dist, nb->cap_row * sizeof *nb->row_dist);
+    nb->row_exact = cmn_realloc(nb->row_exact, nb->cap_row * sizeof *nb->row_exact);
   }
   struct sph_edge_share *rows = share ? nb->row_share : NULL;
   double *dists = nb->row_dist;
@@ -283,6 +346,7 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
     tid = omp_get_thread_num();
 #endif
     double *dist = dists + (size_t)tid * (maxrow + 1);
+    unsigned char *exact = nb->row_exact + (size_t)tid * (maxrow + 1);
     if (share) {
       row = rows + (size_t)tid * (maxrow + 1);
       slot = nb->row_slot + (size_t)tid * nseg;
@@ -296,10 +360,12 @@ void sph_nbrs_gamma(struct sph_nbrs *nb, struct sph_system *s, const struct sph_
         share_from_row(nb, j, stamp, slot, row, sh);
         slot[j] = (struct sph_row_slot){stamp, p - first};
       }
-      pair_wall(nb, s, k, a, j, sh, &nb->term_as[p], gs, &dist[p - first], &nb->dist_as[p]);
+      exact[p - first] = (unsigned char)pair_wall(nb, s, k, a, j, sh, &nb->term_as[p], gs,
+                                                  &dist[p - first], &nb->dist_as[p]);
       for (int c = 0; c < 3; c++) nb->grad_gamma_as[c][p] = gs[c];
       if (sh && sh->got) shared += (size_t)((sh->have & 1) + (sh->have >> 1 & 1) + (sh->have >> 2));
     }
+    if (s->dim == 3) settle_distances(nb, s, a, dist, exact, sph_kernel_support(k));
     behind[a] = (unsigned char)sum_row(nb, f, a, dist, sph_kernel_support(k));
   }
   nb->edges_shared = shared;
@@ -373,5 +439,6 @@ void sph_nbrs_free(struct sph_nbrs *nb) {
   free(nb->row_slot);
   free(nb->row_share);
   free(nb->row_dist);
+  free(nb->row_exact);
   memset(nb, 0, sizeof *nb);
 }

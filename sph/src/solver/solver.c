@@ -513,7 +513,7 @@ static double kernel_sum(const struct sph_solver *sv, size_t a, const double *co
                          double start) {
   const struct sph_system *s = &sv->sys;
   const struct sph_kernel *k = &sv->kernel;
-  const double support = sph_kernel_support(k);
+  const double support = sph_kernel_support(k), support2 = support * support;
   const double xa[3] = {x[0][a], x[1][a], x[2][a]};
   double sum = start;
   const struct sph_parts *pb = &s->part[kind];
@@ -524,9 +524,9 @@ static double kernel_sum(const struct sph_solver *sv, size_t a, const double *co
     const double xb[3] = {xk[0][b], xk[1][b], xk[2][b]};
     double d[3];
     sph_domain_delta(&s->domain, xb, xa, d);
-    const double r = sqrt(dot3(d, d));
-    if (r >= support) continue;
-    sum += pb->mass[b] * sph_kernel_w_inline(k, r);
+    const double r2 = dot3(d, d);
+    if (r2 >= support2) continue; /* the square root only within the support */
+    sum += pb->mass[b] * sph_kernel_w_inline(k, sqrt(r2));
   }
   return sum;
 }

@@ -64,6 +64,8 @@ void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax)
     cu += ax->u[j][0] / 3.0;
     cv += ax->u[j][1] / 3.0;
   }
+  ax->c[0] = cu;
+  ax->c[1] = cv;
   ax->rad = 0.0;
   for (int j = 0; j < 3; j++) {
     const double *A = ax->u[j], *B = ax->u[(j + 1) % 3];
@@ -321,8 +323,7 @@ static void element_in_frame(const struct sph_kernel *k, const double *a,
   int where;
   const int on = fabs(f->delta) <= SPH_GAMMA_PLANE_TOL * h &&
                  classify(a, e, f, SPH_GAMMA_PLANE_TOL * h, &where) != OUTSIDE;
-  struct tri_consts t;
-  consts(on ? 0.0 : f->delta * k->inv_h, &t);
+  const double dh = on ? 0.0 : f->delta * k->inv_h;
   double P[3][2];
   for (int j = 0; j < 3; j++) {
     P[j][0] = f->p[j][0] * k->inv_h;
@@ -341,8 +342,10 @@ static void element_in_frame(const struct sph_kernel *k, const double *a,
     }
     rad = sqrt(rad2);
   }
-  const double reach = sqrt(t.R2) + rad;
+  const double reach = sqrt(4.0 - dh * dh) + rad;
   if (cx * cx + cy * cy >= reach * reach) return; /* a is off s: not `on` either */
+  struct tri_consts t;
+  consts(dh, &t);
   struct edge_geom g[3];
   int cut = 0;
   for (int j = 0; j < 3; j++) {
@@ -429,22 +432,28 @@ void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct 
   }
 }
 
+/* The frame at the point of offset d from the first vertex, from the precomputed axes. */
+static void frame_offset(const double d[3], const struct sph_tri_axes *ax, struct tri_frame *f) {
+  f->delta = dot3(d, ax->nu);
+  const double au = dot3(d, ax->e1), av = dot3(d, ax->e2);
+  for (int j = 0; j < 3; j++) {
+    f->nu[j] = ax->nu[j];
+    f->p[j][0] = ax->u[j][0] - au;
+    f->p[j][1] = ax->u[j][1] - av;
+  }
+  f->sigma = ax->sigma;
+}
+
 int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
                             const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
-                            double grad[3], double *dist, double *off) {
+                            double grad[3], double *lb, double *off) {
   struct tri_frame f;
   f.delta = dot3(d, ax->nu);
   if (fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * k->h) return 1; /* on the plane: the vertices */
-  const double au = dot3(d, ax->e1), av = dot3(d, ax->e2);
-  for (int j = 0; j < 3; j++) {
-    f.nu[j] = ax->nu[j];
-    f.p[j][0] = ax->u[j][0] - au;
-    f.p[j][1] = ax->u[j][1] - av;
-  }
-  f.sigma = ax->sigma;
   *off = f.delta;
-  *dist = sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
-  if (*dist < 2.0 * k->h) {
+  *lb = fabs(f.delta);
+  if (*lb < 2.0 * k->h) { /* element_in_frame culls on the bounding circle */
+    frame_offset(d, ax, &f);
     element_in_frame(k, NULL, NULL, ax, &f, NULL, sh, term, grad);
   } else {
     if (sh) sh->got = 0;
@@ -452,6 +461,19 @@ int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
     grad[0] = grad[1] = grad[2] = 0.0;
   }
   return 0;
+}
+
+double sph_gamma3d_offset_bound(const double d[3], const struct sph_tri_axes *ax) {
+  const double delta = dot3(d, ax->nu);
+  const double cx = ax->c[0] - dot3(d, ax->e1), cy = ax->c[1] - dot3(d, ax->e2);
+  const double rho = sqrt(cx * cx + cy * cy) - ax->rad;
+  return sqrt(delta * delta + (rho > 0.0 ? rho * rho : 0.0));
+}
+
+double sph_gamma3d_offset_distance(const double d[3], const struct sph_tri_axes *ax) {
+  struct tri_frame f;
+  frame_offset(d, ax, &f);
+  return sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
 }
 
 int sph_gamma3d_incident(const struct sph_kernel *k, const double *a,

@@ -31,6 +31,7 @@ struct sph_tri_axes {
   double normal[3]; /* the element's unit normal (as given) */
   double u[3][2];   /* the vertices in the frame (e1, e2), relative to x0 [m] */
   double dir[3][2]; /* unit direction of edge j → j+1 in the frame */
+  double c[2];      /* the centroid in the frame, relative to x0 [m] */
   double rad;       /* largest distance from the centroid to a vertex [m] */
 };
 void sph_gamma3d_axes(const struct sph_wall_element *e, struct sph_tri_axes *ax);
@@ -66,12 +67,25 @@ void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct 
  * precomputed one shifted by d (three dot products), the edges' directions and the bounding circle
  * are the element's. Returns 0, or 1 with nothing computed when a lies within
  * SPH_GAMMA_PLANE_TOL·h of the triangle's plane, where the one-sided limit needs the vertices: the
- * caller then uses sph_gamma3d_pair. Agrees with sph_gamma3d_pair to round-off
+ * caller then uses sph_gamma3d_pair. Instead of the distance to the triangle it gives *lb, the
+ * distance to its plane, a lower bound of it, which is all the support test needs (the bounding
+ * circle then culls in the plane); where the caller needs more, sph_gamma3d_offset_bound gives a
+ * sharper bound (plane and bounding circle) and sph_gamma3d_offset_distance the distance. term,
+ * ∇γ_as and off agree with sph_gamma3d_pair to round-off and are zero beyond the support
  * (tests/sph/test_gamma.c).
  */
 int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
                             const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
-                            double grad[3], double *dist, double *off);
+                            double grad[3], double *lb, double *off);
+
+/* A lower bound [m] of the distance from the point at offset d from ax->x0 to the closed triangle,
+ * from the distance to its plane and to its bounding circle in the plane (equal to the plane
+ * distance where the point faces the triangle; at most round-off above the distance). */
+double sph_gamma3d_offset_bound(const double d[3], const struct sph_tri_axes *ax);
+
+/* The distance [m] from the point at offset d from ax->x0 to the closed triangle: the value
+ * sph_gamma3d_pair gives, to round-off. */
+double sph_gamma3d_offset_distance(const double d[3], const struct sph_tri_axes *ax);
 
 /*
  * Whether a lies on the closed element: within SPH_GAMMA_PLANE_TOL·h of its plane and within tol of

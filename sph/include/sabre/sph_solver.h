@@ -302,6 +302,7 @@ struct sph_solver {
   double *mu[SPH_NKINDS];  /**< dynamic viscosity ν ρ [Pa s] */
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
   double *csound;          /**< fluid sound speed c(ρ) of the forces' evaluation [m/s] */
+  double *vol;             /**< fluid volume m/ρ of the forces' evaluation [m^dim] */
   double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
   int *seg_group;          /**< force group of each segment (−1 none) */
   int *vert_group;         /**< force group of each vertex (−1 none) */

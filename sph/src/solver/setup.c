@@ -299,6 +299,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->gamma_n);
   free(sv->diff);
   free(sv->csound);
+  free(sv->vol);
   free(sv->impedance);
   free(sv->seg_group);
   free(sv->vert_group);

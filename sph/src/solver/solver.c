@@ -41,6 +41,7 @@ static void grow_arrays(struct sph_solver *sv) {
       sv->gamma_n = grow(sv->gamma_n, cap);
       sv->diff = grow(sv->diff, cap);
       sv->csound = grow(sv->csound, cap);
+      sv->vol = grow(sv->vol, cap);
       sv->impedance = grow(sv->impedance, cap);
     }
     sv->cap[k] = cap;
@@ -353,17 +354,17 @@ static void boundary_values_impl(struct sph_solver *sv) {
 
 /* One fluid pair's term of the volume-diffusion rate D_a = d(γ_a ρ_a)/dt of M(84) (Ferrari/η) or
  * of the Brezzi-type term (before its factor Λ), pr the pair's geometry (r_ab ≠ 0); cab_r_eta:
- * c_ab r_ab of diffusion_speed eta, 2 c0 Δr/η (the same for every pair). */
+ * c_ab r_ab of diffusion_speed eta, 2 c0 Δr/η, and slope0 = ρ0/c0² (the same for every pair). */
 static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
-                             const struct sph_pair *pr, double cab_r_eta) {
+                             const struct sph_pair *pr, double cab_r_eta, double slope0) {
   const struct sph_config *cfg = &sv->cfg;
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const double gcorr = cfg->gravity_correction ? 1.0 : 0.0;
-  const double rho_ref = cfg->rho0, c0 = cfg->c0, rho_a = f->rho[a];
+  const double rho_ref = cfg->rho0, rho_a = f->rho[a];
   const double g_r = gcorr * dot3(cfg->gravity, pr->r); /* g·r_ab */
   if (cfg->diffusion == SPH_DIFFUSION_FERRARI) {
     /* ϱ_ab = ρ_a − ρ_b − ρ0/c0² g·r_ab, M(81) (with g = −g e_z: the paper's form). */
-    double slope = rho_ref / (c0 * c0); /* dρ/dp of M(81) */
+    double slope = slope0; /* dρ/dp of M(81), ρ0/c0² */
     if (cfg->gravity_correction == 2) {
       const double rho_m = 0.5 * (rho_a + f->rho[b]), c_m = rmn_eos_sound_speed(&sv->eos, rho_m);
       slope = rho_m / (c_m * c_m);
@@ -381,7 +382,7 @@ static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
   }
   /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
   const double pab = f->p[a] - f->p[b] - rho_ref * g_r;
-  return f->mass[b] / f->rho[b] * 2.0 * pab * pr->dwdr_over_r;
+  return sv->vol[b] * 2.0 * pab * pr->dwdr_over_r;
 }
 
 /* The fluid pairs of a in one pass (their geometry evaluated once): the pressure gradient's sum
@@ -397,13 +398,14 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
   const double *mu = sv->mu[SPH_KIND_FLUID], mu_a = mu[a];
   const int diffusion = sv->cfg.diffusion != SPH_DIFFUSION_NONE;
   const double cab_r_eta = 2.0 * (sv->cfg.c0 * s->dr / sv->cfg.eta);
+  const double slope0 = sv->cfg.rho0 / (sv->cfg.c0 * sv->cfg.c0);
   double dsum = 0.0;
   for (int c = 0; c < 3; c++) g[c] = l[c] = 0.0;
   for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
     const size_t b = nl->index[q];
     struct sph_pair pr;
     if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr)) continue;
-    const double rho_b = f->rho[b], vb = f->mass[b] / rho_b;
+    const double rho_b = f->rho[b], vb = sv->vol[b];
     const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
     double sum = ratio * f->p[b] + pa / ratio;
     if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
@@ -416,7 +418,7 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
       const double tl = vb * 2.0 * bbar * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) l[c] += tl * (f->v[c][a] - f->v[c][b]);
     }
-    if (diffusion) dsum += diffusion_pair(sv, a, b, &pr, cab_r_eta);
+    if (diffusion) dsum += diffusion_pair(sv, a, b, &pr, cab_r_eta, slope0);
   }
   /* The Brezzi-type term takes its time scale Δt in continuity(). */
   if (sv->cfg.diffusion == SPH_DIFFUSION_BREZZI) dsum *= sv->cfg.brezzi_lambda;
@@ -439,11 +441,15 @@ static void forces_impl(struct sph_solver *sv) {
   /* the inflow vertices' entered mass as a layer in front of them, with M(37) (§10) */
   const int use_layer = sv->open && !sv->open_off && !sv->cfg.open_gradient_difference;
   if (use_layer) sph_open_layer(sv->open, sv);
-    /* the sound speeds of the diffusion's pairs, once per particle */
+    /* the sound speeds of the diffusion's pairs and the volumes m/ρ, once per particle (the
+     * volume is the quotient the pair loop formed per pair: the same bits) */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static)
 #endif
-  for (size_t a = 0; a < f->n; a++) sv->csound[a] = rmn_eos_sound_speed(&sv->eos, f->rho[a]);
+  for (size_t a = 0; a < f->n; a++) {
+    sv->csound[a] = rmn_eos_sound_speed(&sv->eos, f->rho[a]);
+    sv->vol[a] = f->mass[a] / f->rho[a];
+  }
   const struct sph_vertex_layer layer = {
       use_layer ? sv->open->layer_vol : NULL,
       use_layer ? (const double *const *)sv->open->layer_x : NULL};

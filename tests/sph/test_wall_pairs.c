@@ -36,18 +36,25 @@ static void gamma_pass(struct sph_system *s, const struct sph_kernel *k, int thr
   sph_nbrs_gamma(nb, s, k);
 }
 
+/* The tank with its fluid moved off the lattice by up to `spread` Δr (seeded), and its kernel. */
+static void jittered_tank(struct sph_system *s, struct sph_kernel *k, uint64_t seed,
+                          double spread) {
+  fixture_system_from_yaml(s, tank);
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  struct sabre_rng rng;
+  sabre_rng_seed(&rng, seed);
+  for (size_t a = 0; a < f->n; a++)
+    for (int c = 0; c < 3; c++) f->x[c][a] += sabre_rng_uniform(&rng, -spread, spread) * s->dr;
+  sph_kernel_init(k, 3, s->h);
+}
+
 static void test_pairs_against_reference(void **state) {
   (void)state;
   struct sph_system s;
-  fixture_system_from_yaml(&s, tank);
+  struct sph_kernel k;
+  jittered_tank(&s, &k, 5, 0.45);
   struct sph_parts *f = &s.part[SPH_KIND_FLUID];
   const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
-  struct sabre_rng rng;
-  sabre_rng_seed(&rng, 5);
-  for (size_t a = 0; a < f->n; a++)
-    for (int c = 0; c < 3; c++) f->x[c][a] += sabre_rng_uniform(&rng, -0.45, 0.45) * s.dr;
-  struct sph_kernel k;
-  sph_kernel_init(&k, 3, s.h);
   struct sph_nbrs nb1, nb2;
   gamma_pass(&s, &k, 1, &nb1);
   const double *gamma1 = f->gamma;
@@ -119,15 +126,10 @@ static void test_pairs_against_reference(void **state) {
 static void test_side_against_reference(void **state) {
   (void)state;
   struct sph_system s;
-  fixture_system_from_yaml(&s, tank);
-  struct sph_parts *f = &s.part[SPH_KIND_FLUID];
-  const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
-  struct sabre_rng rng;
-  sabre_rng_seed(&rng, 11);
-  for (size_t a = 0; a < f->n; a++)
-    for (int c = 0; c < 3; c++) f->x[c][a] += sabre_rng_uniform(&rng, -1.5, 1.5) * s.dr;
   struct sph_kernel k;
-  sph_kernel_init(&k, 3, s.h);
+  jittered_tank(&s, &k, 11, 1.5);
+  const struct sph_parts *f = &s.part[SPH_KIND_FLUID];
+  const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
   struct sph_nbrs nb;
   gamma_pass(&s, &k, 1, &nb);
   const struct sph_nlist *nl = &nb.list[SPH_KIND_SEGMENT];

@@ -154,9 +154,20 @@ void sph_nbrs_build_naive(struct sph_nbrs *nb, const struct sph_system *s, doubl
   build(nb, s, skin, 1);
 }
 
+/* Triangle j's precomputed frame (3D) and the offset d of fluid particle a from its first vertex
+ * (minimum image). */
+static const struct sph_tri_axes *pair_axes(const struct sph_nbrs *nb, const struct sph_system *s,
+                                            size_t a, size_t j, double d[3]) {
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
+  return &nb->tri_axes[j];
+}
+
 /* Wall data of pair p (fluid a, segment j): γ term, ∇γ_as, distance to the element and to its
- * plane (signed, > 0 on the fluid side). Returns 1 if *dist is the distance, 0 if it is a lower
- * bound of it (3D off the triangle's plane: settle_distances measures where needed). */
+ * plane (signed, > 0 on the fluid side). Returns 1 if *dist is the distance, 0 if it is the plane
+ * distance |off|, a lower bound of it (3D off the triangle's plane: settle_distances measures
+ * where needed). */
 static int pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
                      const struct sph_kernel *k, size_t a, size_t j, struct sph_edge_share *sh,
                      double *term, double gs[3], double *dist, double *off) {
@@ -164,8 +175,11 @@ static int pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
   const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
   if (s->dim == 3) { /* the triangle's precomputed frame, shifted to a (the hot path of 3D runs) */
     double d[3];
-    sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
-    if (sph_gamma3d_pair_offset(k, d, &nb->tri_axes[j], sh, term, gs, dist, off) == 0) return 0;
+    const struct sph_tri_axes *ax = pair_axes(nb, s, a, j, d);
+    if (sph_gamma3d_pair_offset(k, d, ax, sh, term, gs, off) == 0) {
+      *dist = fabs(*off);
+      return 0;
+    }
   }
   struct sph_wall_element e;
   sph_segment_vertices(s, j, xa, e.x);
@@ -182,14 +196,6 @@ static int pair_wall(const struct sph_nbrs *nb, const struct sph_system *s,
   gs[0] = gs[1] = gs[2] = 0.0;
   if (*dist < sph_kernel_support(k)) sph_gamma_element(k, xa, &e, term, gs);
   return 1;
-}
-
-static const struct sph_tri_axes *pair_axes(const struct sph_nbrs *nb, const struct sph_system *s,
-                                            size_t a, size_t j, double d[3]) {
-  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-  sph_domain_delta(&s->domain, nb->tri_axes[j].x0, xa, d);
-  return &nb->tri_axes[j];
 }
 
 /* The side test (sum_row) reads the distances of the nearest elements within the support only.

@@ -432,9 +432,9 @@ void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct 
   }
 }
 
-/* The frame at the point of offset d from the first vertex, from the precomputed axes. */
+/* The frame at the point of offset d from the first vertex, from the precomputed axes, given
+ * f->delta = d·ν (the caller's first test). */
 static void frame_offset(const double d[3], const struct sph_tri_axes *ax, struct tri_frame *f) {
-  f->delta = dot3(d, ax->nu);
   const double au = dot3(d, ax->e1), av = dot3(d, ax->e2);
   for (int j = 0; j < 3; j++) {
     f->nu[j] = ax->nu[j];
@@ -446,13 +446,12 @@ static void frame_offset(const double d[3], const struct sph_tri_axes *ax, struc
 
 int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
                             const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
-                            double grad[3], double *lb, double *off) {
+                            double grad[3], double *off) {
   struct tri_frame f;
   f.delta = dot3(d, ax->nu);
   if (fabs(f.delta) <= SPH_GAMMA_PLANE_TOL * k->h) return 1; /* on the plane: the vertices */
   *off = f.delta;
-  *lb = fabs(f.delta);
-  if (*lb < 2.0 * k->h) { /* element_in_frame culls on the bounding circle */
+  if (fabs(f.delta) < 2.0 * k->h) { /* element_in_frame culls on the bounding circle */
     frame_offset(d, ax, &f);
     element_in_frame(k, NULL, NULL, ax, &f, NULL, sh, term, grad);
   } else {
@@ -472,6 +471,7 @@ double sph_gamma3d_offset_bound(const double d[3], const struct sph_tri_axes *ax
 
 double sph_gamma3d_offset_distance(const double d[3], const struct sph_tri_axes *ax) {
   struct tri_frame f;
+  f.delta = dot3(d, ax->nu);
   frame_offset(d, ax, &f);
   return sqrt(f.delta * f.delta + plane_distance2((const double(*)[2])f.p, f.sigma));
 }

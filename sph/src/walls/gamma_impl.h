@@ -67,16 +67,16 @@ void sph_gamma3d_pair(const struct sph_kernel *k, const double *a, const struct 
  * precomputed one shifted by d (three dot products), the edges' directions and the bounding circle
  * are the element's. Returns 0, or 1 with nothing computed when a lies within
  * SPH_GAMMA_PLANE_TOL·h of the triangle's plane, where the one-sided limit needs the vertices: the
- * caller then uses sph_gamma3d_pair. Instead of the distance to the triangle it gives *lb, the
- * distance to its plane, a lower bound of it, which is all the support test needs (the bounding
- * circle then culls in the plane); where the caller needs more, sph_gamma3d_offset_bound gives a
- * sharper bound (plane and bounding circle) and sph_gamma3d_offset_distance the distance. term,
+ * caller then uses sph_gamma3d_pair. It gives no distance to the triangle: the support test needs
+ * only |off| (a lower bound of it) and the bounding circle, which cull inside; where the caller
+ * needs more, sph_gamma3d_offset_bound gives a sharper bound (plane and bounding circle) and
+ * sph_gamma3d_offset_distance the distance. term,
  * ∇γ_as and off agree with sph_gamma3d_pair to round-off and are zero beyond the support
  * (tests/sph/test_gamma.c).
  */
 int sph_gamma3d_pair_offset(const struct sph_kernel *k, const double d[3],
                             const struct sph_tri_axes *ax, struct sph_edge_share *sh, double *term,
-                            double grad[3], double *lb, double *off);
+                            double grad[3], double *off);
 
 /* A lower bound [m] of the distance from the point at offset d from ax->x0 to the closed triangle,
  * from the distance to its plane and to its bounding circle in the plane (equal to the plane

@@ -48,4 +48,12 @@ static inline double sph_kernel_dwdr_inline(const struct sph_kernel *k, double r
   return k->dw_norm * sph_wendland_dfdq(r * k->inv_h);
 }
 
+/** dw/dr / r for r > 0 [1/m^(d+2)]: f'(q)/(q h²) = −5 (1 − q/2)^3 / h², without a division. */
+static inline double sph_kernel_dwdr_over_r_inline(const struct sph_kernel *k, double r) {
+  const double q = r * k->inv_h;
+  if (q >= 2.0) return 0.0;
+  const double t = 1.0 - 0.5 * q;
+  return k->dw_norm * k->inv_h * (-5.0 * t * t * t);
+}
+
 #endif

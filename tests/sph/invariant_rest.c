@@ -79,6 +79,9 @@ static void run(const char *text, const char *extra, const double (*box)[3], con
   sph_solver_init(sv, &cfg, &s, NULL, NULL);
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   sph_solver_evaluate(sv);
+  if (cfg.repack_steps > 0)
+    print_message("  %s: repacking, %ld steps: largest defect x h %.3g -> %.3g\n", tag,
+                  cfg.repack_steps, sv->repack_residual[0], sv->repack_residual[1]);
   defect(sv, box, tag, dstart);
   *umax = *dmax = 0.0;
   char msg[1024];

@@ -303,6 +303,7 @@ struct sph_solver {
   double *diff;            /**< fluid volume-diffusion rate d(γρ)/dt [kg/m³/s] */
   double *csound;          /**< fluid sound speed c(ρ) of the forces' evaluation [m/s] */
   double *vol;             /**< fluid volume m/ρ of the forces' evaluation [m^dim] */
+  double *inv_rho2;        /**< fluid 1/ρ² of the forces' evaluation [m⁶/kg²] */
   double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
   int *seg_group;          /**< force group of each segment (−1 none) */
   int *vert_group;         /**< force group of each vertex (−1 none) */

@@ -67,6 +67,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
   /* Near an open boundary, χ_a f_a × the zeroth-order defect is taken out of every pair:
    * (ρ_a/ρ_b)^k (f_b − χ_a f_a) + (1 − χ_a) f_a (ρ_b/ρ_a)^k (docs/sph-solver.md §10). */
   const double chi = open_difference ? sph_op_open_share(op, a) : 0.0, fc = chi * fa;
+  const double qa = (fa - fc) / rho_a; /* the fluid pairs' f_a part for k = 1 */
   for (int kind = g_fluid ? SPH_KIND_VERTEX : SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
     const struct sph_parts *pb = &s->part[kind];
     const struct sph_nlist *nl = &op->nb->list[kind];
@@ -74,6 +75,13 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       size_t b = nl->index[q];
       struct sph_pair pr;
       if (!sph_pair_eval(op->kernel, s, pa, a, pb, b, &pr)) continue;
+      if (kind == SPH_KIND_FLUID && k == 1.0) { /* as the fused loop (solver.c: fluid_pairs) */
+        const double t = sph_pair_pressure_k1(pb->mass[b], rho_a, sph_inv_rho2(pb->rho[b]),
+                                              f[kind][b] - fc, qa) *
+                         pr.dwdr_over_r;
+        for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
+        continue;
+      }
       const double rho_b = pb->rho[b], vb = pb->mass[b] / rho_b;
       const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
       double fb = f[kind][b];

@@ -32,11 +32,23 @@ static inline int sph_pair_eval(const struct sph_kernel *k, const struct sph_sys
   for (int c = 0; c < 3; c++) pr->r[c] = d[c];
   pr->dist = r;
   pr->w = sph_kernel_w_inline(k, r);
-  pr->dwdr_over_r = r > 0.0 ? sph_kernel_dwdr_inline(k, r) / r : 0.0;
+  pr->dwdr_over_r = r > 0.0 ? sph_kernel_dwdr_over_r_inline(k, r) : 0.0;
   return 1;
 }
 
 /** (ρ_a/ρ_b)^k with exact paths for k = 0 and 1 (M 37–38). */
+/* 1/ρ² of a particle, as the pair loops use it (one expression, so that the fused loop's
+ * per-particle value and the operators' per-pair value have the same bits). */
+static inline double sph_inv_rho2(double rho) { return 1.0 / (rho * rho); }
+
+/* The pressure pair term of M(37) with k = 1 before w'/r: V_b (ρ_a/ρ_b f_b + ρ_b/ρ_a f_a) =
+ * m_b (ρ_a f_b/ρ_b² + f_a/ρ_a), from m_b, ρ_a, 1/ρ_b², f_b and f_a/ρ_a: no division per pair.
+ * (With the open difference form, f_b − fc and (f_a − fc)/ρ_a.) */
+static inline double sph_pair_pressure_k1(double m_b, double rho_a, double inv_rho2_b, double f_b,
+                                          double fa_over_rho_a) {
+  return m_b * (rho_a * inv_rho2_b * f_b + fa_over_rho_a);
+}
+
 static inline double sph_rho_ratio_k(double rho_a, double rho_b, double k) {
   if (k == 0.0) return 1.0;
   if (k == 1.0) return rho_a / rho_b;

@@ -300,6 +300,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->diff);
   free(sv->csound);
   free(sv->vol);
+  free(sv->inv_rho2);
   free(sv->impedance);
   free(sv->seg_group);
   free(sv->vert_group);

@@ -42,6 +42,7 @@ static void grow_arrays(struct sph_solver *sv) {
       sv->diff = grow(sv->diff, cap);
       sv->csound = grow(sv->csound, cap);
       sv->vol = grow(sv->vol, cap);
+      sv->inv_rho2 = grow(sv->inv_rho2, cap);
       sv->impedance = grow(sv->impedance, cap);
     }
     sv->cap[k] = cap;
@@ -378,7 +379,7 @@ static double diffusion_pair(const struct sph_solver *sv, size_t a, size_t b,
     } else {
       cab_r = cab_r_eta; /* r_ab c_ab = 2K, K = c0 Δr/η, M(52), M(48) */
     }
-    return f->mass[b] * cab_r * pr->dwdr_over_r * varrho / f->rho[b];
+    return sv->vol[b] * cab_r * pr->dwdr_over_r * varrho;
   }
   /* Λ Δt Lap(p) with the hydrostatic part removed: Σ V_b 2 (p_ab − ρ0 g·r_ab) w'/r. */
   const double pab = f->p[a] - f->p[b] - rho_ref * g_r;
@@ -395,6 +396,8 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
   const double k = sv->cfg.grad_k, rho_a = f->rho[a], pa = f->p[a];
+  const int k1 = k == 1.0;
+  const double qa = (pa - fc) / rho_a; /* the pairs' p_a part for k = 1 */
   const double *mu = sv->mu[SPH_KIND_FLUID], mu_a = mu[a];
   const int diffusion = sv->cfg.diffusion != SPH_DIFFUSION_NONE;
   const double cab_r_eta = 2.0 * (sv->cfg.c0 * s->dr / sv->cfg.eta);
@@ -405,11 +408,17 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
     const size_t b = nl->index[q];
     struct sph_pair pr;
     if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr)) continue;
-    const double rho_b = f->rho[b], vb = sv->vol[b];
-    const double ratio = sph_rho_ratio_k(rho_a, rho_b, k);
-    double sum = ratio * f->p[b] + pa / ratio;
-    if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
-    const double t = vb * sum * pr.dwdr_over_r;
+    const double vb = sv->vol[b];
+    double t;
+    if (k1) { /* k = 1 without a division: vb × sum = m_b (ρ_a (f_b − fc)/ρ_b² + (f_a − fc)/ρ_a) */
+      t = sph_pair_pressure_k1(f->mass[b], rho_a, sv->inv_rho2[b], f->p[b] - fc, qa) *
+          pr.dwdr_over_r;
+    } else {
+      const double ratio = sph_rho_ratio_k(rho_a, f->rho[b], k);
+      double sum = ratio * f->p[b] + pa / ratio;
+      if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
+      t = vb * sum * pr.dwdr_over_r;
+    }
     for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
     if (pr.dist == 0.0) continue;
     if (viscous) {
@@ -449,6 +458,7 @@ static void forces_impl(struct sph_solver *sv) {
   for (size_t a = 0; a < f->n; a++) {
     sv->csound[a] = rmn_eos_sound_speed(&sv->eos, f->rho[a]);
     sv->vol[a] = f->mass[a] / f->rho[a];
+    sv->inv_rho2[a] = sph_inv_rho2(f->rho[a]);
   }
   const struct sph_vertex_layer layer = {
       use_layer ? sv->open->layer_vol : NULL,
@@ -733,6 +743,11 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   const double fire_inc = 1.1, fire_dec = 0.5, fire_alpha0 = 0.1, fire_falpha = 0.99;
   double dt = 0.0, dt_max = 0.0, alpha = fire_alpha0;
   int npos = 0;
+  /* FIRE's residual is not monotone (each restart loses some of the way): the configuration of
+   * least residual met is the one kept, so that more steps never end worse and the result does
+   * not hang on where the last restart fell. */
+  double best = INFINITY, *xbest[3];
+  for (int c = 0; c < 3; c++) xbest[c] = cmn_malloc((n + 1) * sizeof *xbest[c]);
   for (long it = 0;; it++) {
     double amax = 0.0, power = 0.0, fnorm2 = 0.0, vnorm2 = 0.0;
     for (size_t a = 0; a < n; a++) {
@@ -755,6 +770,10 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
       dt_max = 10.0 * dt;
     }
     sv->repack_residual[1] = residual;
+    if (residual < best) {
+      best = residual;
+      for (int c = 0; c < 3; c++) memcpy(xbest[c], f->x[c], n * sizeof(double));
+    }
     if (it == steps || !(amax > 0.0)) break;
     const double mix = sqrt(vnorm2 / fnorm2);
     if (power > 0.0) {
@@ -789,6 +808,13 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
     sv->gamma_current = 0;
     sph_solver_evaluate(sv);
   }
+  if (sv->repack_residual[1] > best) { /* back to the best configuration met */
+    for (int c = 0; c < 3; c++) memcpy(f->x[c], xbest[c], n * sizeof(double));
+    sv->repack_residual[1] = best;
+    sv->gamma_current = 0;
+    sph_solver_evaluate(sv);
+  }
+  for (int c = 0; c < 3; c++) free(xbest[c]);
   free(fixed);
   for (size_t i = 0; i < vx->n; i++) vx->mass[i] = mass_v[i];
   free(mass_v);

@@ -48,7 +48,8 @@ static inline double sph_kernel_dwdr_inline(const struct sph_kernel *k, double r
   return k->dw_norm * sph_wendland_dfdq(r * k->inv_h);
 }
 
-/** dw/dr / r for r > 0 [1/m^(d+2)]: f'(q)/(q h²) = −5 (1 − q/2)^3 / h², without a division. */
+/** dw/dr / r for r > 0 [1/m^(d+2)]: α_d f'(q)/(q h^(d+2)) = −5 α_d (1 − q/2)^3 / h^(d+2), without
+ *  a division (dw_norm = α_d/h^(d+1)). */
 static inline double sph_kernel_dwdr_over_r_inline(const struct sph_kernel *k, double r) {
   const double q = r * k->inv_h;
   if (q >= 2.0) return 0.0;

@@ -36,7 +36,6 @@ static inline int sph_pair_eval(const struct sph_kernel *k, const struct sph_sys
   return 1;
 }
 
-/** (ρ_a/ρ_b)^k with exact paths for k = 0 and 1 (M 37–38). */
 /* 1/ρ² of a particle, as the pair loops use it (one expression, so that the fused loop's
  * per-particle value and the operators' per-pair value have the same bits). */
 static inline double sph_inv_rho2(double rho) { return 1.0 / (rho * rho); }
@@ -49,6 +48,7 @@ static inline double sph_pair_pressure_k1(double m_b, double rho_a, double inv_r
   return m_b * (rho_a * inv_rho2_b * f_b + fa_over_rho_a);
 }
 
+/** (ρ_a/ρ_b)^k with exact paths for k = 0 and 1 (M 37–38). */
 static inline double sph_rho_ratio_k(double rho_a, double rho_b, double k) {
   if (k == 0.0) return 1.0;
   if (k == 1.0) return rho_a / rho_b;

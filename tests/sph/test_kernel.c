@@ -122,12 +122,40 @@ static void test_derivative(void **state) {
   }
 }
 
+/* The hot loops' dw/dr / r without a division (kernel.h) against dw/dr divided by r: equal to
+ * round-off within the support (including r → 0, where it tends to −5 α_d/h^(d+2)), zero at and
+ * beyond 2h. */
+static void test_derivative_over_r(void **state) {
+  (void)state;
+  struct sabre_rng rng;
+  sabre_rng_seed(&rng, 78);
+  for (int d = 1; d <= 3; d++) {
+    struct sph_kernel k;
+    sph_kernel_init(&k, d, H);
+    const double scale = k.alpha / pow(H, d + 2);
+    double worst = 0.0;
+    for (int i = 0; i < 2000; i++) {
+      const double r = sabre_rng_uniform(&rng, 1e-9, 1.9999) * H;
+      const double ref = sph_kernel_dwdr_inline(&k, r) / r;
+      const double got = sph_kernel_dwdr_over_r_inline(&k, r);
+      worst = fmax(worst, fabs(got - ref) / fabs(ref));
+      assert_true(got < 0.0);
+    }
+    print_message("d = %d: largest relative difference %.2e\n", d, worst);
+    assert_true(worst <= 2e-15);
+    assert_abs(sph_kernel_dwdr_over_r_inline(&k, 1e-12 * H) / scale, -5.0, 1e-11);
+    assert_true(sph_kernel_dwdr_over_r_inline(&k, 2.0 * H) == 0.0);
+    assert_true(sph_kernel_dwdr_over_r_inline(&k, 2.5 * H) == 0.0);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_init_errors),
       cmocka_unit_test(test_normalisation),
       cmocka_unit_test(test_values),
       cmocka_unit_test(test_derivative),
+      cmocka_unit_test(test_derivative_over_r),
   };
   return cmocka_run_group_tests(tests, sabre_setup_gsl_traps, NULL);
 }

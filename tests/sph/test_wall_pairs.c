@@ -37,10 +37,11 @@ static void gamma_pass(struct sph_system *s, const struct sph_kernel *k, int thr
   sph_nbrs_gamma(nb, s, k);
 }
 
-/* The tank with its fluid moved off the lattice by up to `spread` Δr (seeded), and its kernel. */
-static void jittered_tank(struct sph_system *s, struct sph_kernel *k, uint64_t seed,
-                          double spread) {
-  fixture_system_from_yaml(s, tank);
+/* The system of a case text with its fluid moved off the lattice by up to `spread` Δr (seeded),
+ * and its kernel. */
+static void jittered_tank(struct sph_system *s, struct sph_kernel *k, const char *text,
+                          uint64_t seed, double spread) {
+  fixture_system_from_yaml(s, text);
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   struct sabre_rng rng;
   sabre_rng_seed(&rng, seed);
@@ -53,7 +54,7 @@ static void test_pairs_against_reference(void **state) {
   (void)state;
   struct sph_system s;
   struct sph_kernel k;
-  jittered_tank(&s, &k, 5, 0.45);
+  jittered_tank(&s, &k, tank, 5, 0.45);
   struct sph_parts *f = &s.part[SPH_KIND_FLUID];
   const struct sph_parts *sg = &s.part[SPH_KIND_SEGMENT];
   struct sph_nbrs nb1, nb2;
@@ -182,7 +183,7 @@ static void test_side_against_reference(void **state) {
   (void)state;
   struct sph_system s;
   struct sph_kernel k;
-  jittered_tank(&s, &k, 11, 1.5);
+  jittered_tank(&s, &k, tank, 11, 1.5);
   size_t behind;
   check_side(&s, &k, &behind);
   assert_true(behind > 50);
@@ -239,13 +240,7 @@ static void test_side_mixed_triangles(void **state) {
            path);
   struct sph_system s;
   struct sph_kernel k;
-  fixture_system_from_yaml(&s, yaml);
-  struct sph_parts *f = &s.part[SPH_KIND_FLUID];
-  struct sabre_rng rng;
-  sabre_rng_seed(&rng, 13);
-  for (size_t a = 0; a < f->n; a++)
-    for (int c = 0; c < 3; c++) f->x[c][a] += sabre_rng_uniform(&rng, -1.5, 1.5) * s.dr;
-  sph_kernel_init(&k, 3, s.h);
+  jittered_tank(&s, &k, yaml, 13, 1.5);
   size_t behind;
   const size_t decided = check_side(&s, &k, &behind);
   assert_true(behind > 50);

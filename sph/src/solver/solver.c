@@ -408,7 +408,6 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
     const size_t b = nl->index[q];
     struct sph_pair pr;
     if (!sph_pair_eval(&sv->kernel, s, f, a, f, b, &pr)) continue;
-    const double vb = sv->vol[b];
     double t;
     if (k1) { /* k = 1 without a division: vb × sum = m_b (ρ_a (f_b − fc)/ρ_b² + (f_a − fc)/ρ_a) */
       t = sph_pair_pressure_k1(f->mass[b], rho_a, sv->inv_rho2[b], f->p[b] - fc, qa) *
@@ -417,14 +416,14 @@ static double fluid_pairs(const struct sph_solver *sv, size_t a, double fc, int 
       const double ratio = sph_rho_ratio_k(rho_a, f->rho[b], k);
       double sum = ratio * f->p[b] + pa / ratio;
       if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
-      t = vb * sum * pr.dwdr_over_r;
+      t = sv->vol[b] * sum * pr.dwdr_over_r;
     }
     for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
     if (pr.dist == 0.0) continue;
     if (viscous) {
       const double bsum = mu_a + mu[b];
       const double bbar = bsum > 0.0 ? 2.0 * mu_a * mu[b] / bsum : 0.0; /* J(9) */
-      const double tl = vb * 2.0 * bbar * pr.dwdr_over_r;
+      const double tl = sv->vol[b] * 2.0 * bbar * pr.dwdr_over_r;
       for (int c = 0; c < 3; c++) l[c] += tl * (f->v[c][a] - f->v[c][b]);
     }
     if (diffusion) dsum += diffusion_pair(sv, a, b, &pr, cab_r_eta, slope0);

@@ -26,6 +26,7 @@ static void test_defaults(void **state) {
   char msg[512];
   assert_int_equal(read_case("", &cfg, msg, sizeof msg), 0);
   assert_true(cfg.xi == 7.0 && cfg.nu == 0.0 && cfg.grad_k == 1.0);
+  assert_true(cfg.artificial_viscosity == 0.0);
   assert_int_equal(cfg.diffusion, SPH_DIFFUSION_FERRARI);
   assert_int_equal(cfg.gravity_correction, 2);
   assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
@@ -59,6 +60,7 @@ static void test_errors(void **state) {
   expect("numerics: {cfll: 0.2}\n", "numerics.cfll", "");
   expect("numerics: {diffusion: laplace}\n", "numerics.diffusion", "ferrari");
   expect("numerics: {gradient_k: 3}\n", "numerics.gradient_k", "");
+  expect("numerics: {artificial_viscosity: -0.01}\n", "numerics.artificial_viscosity", "");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");

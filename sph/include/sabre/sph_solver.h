@@ -220,9 +220,12 @@ struct sph_config {
                                  * boundaries in proportion to their share of the wall terms
                                  * (sph_op_grad_pressure, docs/sph-solver.md §10) */
   int gamma_dynamic;            /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
-  int vertex_volume;            /**< enum sph_vertex_volume */
-  double vertex_layer;          /**< thickness of the wall layer of the vertex volumes [Δr] */
-  long repack_steps;            /**< pseudo-time steps of the initial repacking (0: none) */
+  /** α of numerics.artificial_viscosity [-]: sph_solver_init() adds ν_α = α h c0 / (2(d + 2))
+   *  [m²/s] to nu in the solver's copy of the configuration (docs/sph-solver.md §4) */
+  double artificial_viscosity;
+  int vertex_volume;   /**< enum sph_vertex_volume */
+  double vertex_layer; /**< thickness of the wall layer of the vertex volumes [Δr] */
+  long repack_steps;   /**< pseudo-time steps of the initial repacking (0: none) */
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   int list_rebuild;   /**< enum sph_list_rebuild */
@@ -364,7 +367,8 @@ void sph_solver_evaluate(struct sph_solver *sv);
  * ∇γ_a (docs/sph-solver.md §2), vanishes, so that fluid at uniform pressure next to walls, edges
  * and corners is at rest. A damped pseudo-dynamics of `steps` steps under the solver's own
  * momentum equation at a uniform pressure without gravity (fluid V_b = Δr^d, vertex volumes
- * m_v/ρ_v of the state on entry): the force is then
+ * m_v/ρ_v of the state on entry), without viscosity and wall impedance (terms of the
+ * pseudo-velocities; both are restored on return): the force is then
  * −(2p/ρ) times the defect, the gradient of a potential, so the damped motion settles. Particles
  * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
  * 2h stay where they are (a lid: a free surface has a defect of its own). The pseudo-dynamics is

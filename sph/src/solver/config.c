@@ -292,6 +292,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                           &cfg->vertex_hydro));
   static const char *const impedances[] = {"none", "acoustic", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, 0, &cfg->wall_impedance));
+  TRY(cmn_case_opt_double(c, "numerics.artificial_viscosity", 0.0, 0.0, INFINITY,
+                          &cfg->artificial_viscosity));
   static const char *const ograds[] = {"symmetric", "difference", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, 0, &cfg->open_gradient_difference));
   static const char *const gammas[] = {"analytic", "dynamic", NULL};

@@ -193,6 +193,9 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     cmn_error("bad kernel: dimension %d, h = %g m", sys->dim, sys->h);
   if (rmn_eos_init(&sv->eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS)
     cmn_error("bad EOS: rho0 = %g, c0 = %g, xi = %g", cfg->rho0, cfg->c0, cfg->xi);
+  /* numerics.artificial_viscosity: the laminar viscosity equivalent to the α term, ν_α = α h c0 /
+   * (2(d + 2)), added to the fluid's (docs/sph-solver.md §4) */
+  sv->cfg.nu += cfg->artificial_viscosity * sys->h * cfg->c0 / (2.0 * (sys->dim + 2));
 
   struct sph_parts *f = &sys->part[SPH_KIND_FLUID];
   /* initial.wave: the fluid below the wave's surface at t = 0 (a particle's cell centred below

@@ -706,6 +706,13 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   memcpy(gravity, sv->cfg.gravity, sizeof gravity);
   for (int c = 0; c < 3; c++) sv->cfg.gravity[c] = 0.0;
   sv->open_off = 1; /* open segments are walls at the repacking's uniform pressure */
+  /* The repacking moves towards zero defect at rest: no term that depends on the pseudo-velocities
+   * (viscosity, the wall impedance), whose forces would balance the defect's while the particles
+   * still move and end it elsewhere. */
+  const double nu = sv->cfg.nu;
+  const int impedance = sv->cfg.wall_impedance;
+  sv->cfg.nu = 0.0;
+  sv->cfg.wall_impedance = 0;
   for (size_t a = 0; a < n; a++) {
     f->rho[a] = rho_r;
     f->mass[a] = rho_r * vol;
@@ -818,6 +825,8 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   for (size_t i = 0; i < vx->n; i++) vx->mass[i] = mass_v[i];
   free(mass_v);
   memcpy(sv->cfg.gravity, gravity, sizeof gravity);
+  sv->cfg.nu = nu;
+  sv->cfg.wall_impedance = impedance;
   sv->open_off = 0;
   for (int c = 0; c < 3; c++)
     for (size_t a = 0; a < n; a++) f->v[c][a] = 0.0;

@@ -207,26 +207,43 @@ void cmn_progress_start(struct cmn_progress *p, double t_start, double t_end) {
   p->enabled = 1;
 }
 
-static void progress_format(const struct cmn_progress *p, double now, long step, double t,
-                            double dt, long count, char *buf, size_t len) {
-  char eta[32] = "--:--:--";
+/* "hh:mm:ss" left until `done` reaches t_end at the mean rate so far, or dashes while unknown. */
+static void progress_eta(const struct cmn_progress *p, double now, double done, char *eta,
+                         size_t len) {
+  snprintf(eta, len, "--:--:--");
   double span = p->t_end - p->t_start;
   double elapsed = now - p->wall_start;
-  if (span > 0.0 && t > p->t_start && elapsed >= 0.0) {
-    double frac = (t - p->t_start) / span;
+  if (span > 0.0 && done > p->t_start && elapsed >= 0.0) {
+    double frac = (done - p->t_start) / span;
     if (frac > 1.0) frac = 1.0;
     double remaining = elapsed * (1.0 - frac) / frac;
     /* Early estimates can be absurd; show dashes rather than a meaningless number. */
     if (remaining < 1.0e8) {
       long s = lround(remaining);
-      snprintf(eta, sizeof eta, "%02ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+      snprintf(eta, len, "%02ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
     }
   }
+}
+
+static void progress_format(const struct cmn_progress *p, double now, long step, double t,
+                            double dt, long count, char *buf, size_t len) {
+  char eta[32];
+  progress_eta(p, now, t, eta, sizeof eta);
   if (count >= 0)
     snprintf(buf, len, "step %ld  t = %.4g s  dt = %.2g s  N = %ld  ETA %s", step, t, dt, count,
              eta);
   else
     snprintf(buf, len, "step %ld  t = %.4g s  dt = %.2g s  ETA %s", step, t, dt, eta);
+}
+
+void cmn_progress_task(struct cmn_progress *p, const char *what, double done, int force) {
+  if (!p->enabled) return;
+  double now = cmn_wall_time();
+  if (!force && now - p->wall_last < p->interval) return;
+  p->wall_last = now;
+  char eta[32];
+  progress_eta(p, now, done, eta, sizeof eta);
+  fprintf(stderr, "%s  ETA %s\n", what, eta);
 }
 
 void cmn_progress_report(struct cmn_progress *p, long step, double t, double dt, long count,

@@ -183,6 +183,14 @@ static void progress_lines(void) {
   cmn_progress_report(&p, 0, 2.0, 1e-3, -1, 1);
   p.enabled = 0;
   cmn_progress_report(&p, 1, 2.5, 1e-3, 10, 1);
+  /* A task counted in iterations: 5 s of wall time for 1000 of 4000. */
+  cmn_progress_start(&p, 0.0, 4000.0);
+  p.wall_start -= 5.0;
+  cmn_progress_task(&p, "repacking: step 1000 of 4000", 1000.0, 1);
+  p.interval = 1e9;
+  cmn_progress_task(&p, "silent within the interval", 2000.0, 0);
+  p.enabled = 0;
+  cmn_progress_task(&p, "silent when disabled", 3000.0, 1);
   fflush(stderr);
   _exit(0);
 }
@@ -197,7 +205,8 @@ static void test_progress(void **state) {
   assert_int_equal(sabre_run_child(progress_lines, out, sizeof out), 0);
   assert_string_equal(out,
                       "step 1200  t = 0.25 s  dt = 1.2e-05 s  N = 40000  ETA 00:00:30\n"
-                      "step 0  t = 2 s  dt = 0.001 s  ETA --:--:--\n");
+                      "step 0  t = 2 s  dt = 0.001 s  ETA --:--:--\n"
+                      "repacking: step 1000 of 4000  ETA 00:00:15\n");
 }
 
 int main(void) {

@@ -366,6 +366,13 @@ void cmn_progress_start(struct cmn_progress *p, double t_start, double t_end);
 /** Print a line if `interval` has passed since the last one, or if force != 0. */
 void cmn_progress_report(struct cmn_progress *p, long step, double t, double dt, long count,
                          int force);
+/**
+ * The same for a task that is not a time integration (e.g. the SPH's initial repacking): prints
+ * "<what>  ETA hh:mm:ss", with `done` the progress on the scale [t_start, t_end] given to
+ * cmn_progress_start() (e.g. iterations out of a total), if `interval` has passed since the last
+ * line or if force != 0. `what` is the caller's text (not owned).
+ */
+void cmn_progress_task(struct cmn_progress *p, const char *what, double done, int force);
 
 #ifdef __cplusplus
 }

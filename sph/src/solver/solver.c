@@ -754,6 +754,8 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
    * not hang on where the last restart fell. */
   double best = INFINITY, *xbest[3];
   for (int c = 0; c < 3; c++) xbest[c] = cmn_malloc((n + 1) * sizeof *xbest[c]);
+  struct cmn_progress prog;
+  cmn_progress_start(&prog, 0.0, (double)steps);
   for (long it = 0;; it++) {
     double amax = 0.0, power = 0.0, fnorm2 = 0.0, vnorm2 = 0.0;
     for (size_t a = 0; a < n; a++) {
@@ -781,6 +783,12 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
       for (int c = 0; c < 3; c++) memcpy(xbest[c], f->x[c], n * sizeof(double));
     }
     if (it == steps || !(amax > 0.0)) break;
+    {
+      char what[160];
+      snprintf(what, sizeof what, "repacking: step %ld of %ld  largest defect %.3g (least %.3g)",
+               it, steps, residual, best);
+      cmn_progress_task(&prog, what, (double)it, 0);
+    }
     const double mix = sqrt(vnorm2 / fnorm2);
     if (power > 0.0) {
       for (int c = 0; c < 3; c++)

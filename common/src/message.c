@@ -236,22 +236,31 @@ static void progress_format(const struct cmn_progress *p, double now, long step,
     snprintf(buf, len, "step %ld  t = %.4g s  dt = %.2g s  ETA %s", step, t, dt, eta);
 }
 
-void cmn_progress_task(struct cmn_progress *p, const char *what, double done, int force) {
-  if (!p->enabled) return;
-  double now = cmn_wall_time();
-  if (!force && now - p->wall_last < p->interval) return;
-  p->wall_last = now;
+/* 1 (and the time in *now) when a line is due: enabled, and forced or `interval` has passed. */
+static int progress_due(struct cmn_progress *p, int force, double *now) {
+  if (!p->enabled) return 0;
+  *now = cmn_wall_time();
+  if (!force && *now - p->wall_last < p->interval) return 0;
+  p->wall_last = *now;
+  return 1;
+}
+
+void cmn_progress_task(struct cmn_progress *p, double done, int force, const char *fmt, ...) {
+  double now;
+  if (!progress_due(p, force, &now)) return;
   char eta[32];
   progress_eta(p, now, done, eta, sizeof eta);
-  fprintf(stderr, "%s  ETA %s\n", what, eta);
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "  ETA %s\n", eta);
 }
 
 void cmn_progress_report(struct cmn_progress *p, long step, double t, double dt, long count,
                          int force) {
-  if (!p->enabled) return;
-  double now = cmn_wall_time();
-  if (!force && now - p->wall_last < p->interval) return;
-  p->wall_last = now;
+  double now;
+  if (!progress_due(p, force, &now)) return;
   char line[256];
   progress_format(p, now, step, t, dt, count, line, sizeof line);
   fprintf(stderr, "%s\n", line);

@@ -186,11 +186,11 @@ static void progress_lines(void) {
   /* A task counted in iterations: 5 s of wall time for 1000 of 4000. */
   cmn_progress_start(&p, 0.0, 4000.0);
   p.wall_start -= 5.0;
-  cmn_progress_task(&p, "repacking: step 1000 of 4000", 1000.0, 1);
+  cmn_progress_task(&p, 1000.0, 1, "repacking: step %d of %d", 1000, 4000);
   p.interval = 1e9;
-  cmn_progress_task(&p, "silent within the interval", 2000.0, 0);
+  cmn_progress_task(&p, 2000.0, 0, "silent within the interval");
   p.enabled = 0;
-  cmn_progress_task(&p, "silent when disabled", 3000.0, 1);
+  cmn_progress_task(&p, 3000.0, 1, "silent when disabled");
   fflush(stderr);
   _exit(0);
 }

@@ -368,11 +368,12 @@ void cmn_progress_report(struct cmn_progress *p, long step, double t, double dt,
                          int force);
 /**
  * The same for a task that is not a time integration (e.g. the SPH's initial repacking): prints
- * "<what>  ETA hh:mm:ss", with `done` the progress on the scale [t_start, t_end] given to
- * cmn_progress_start() (e.g. iterations out of a total), if `interval` has passed since the last
- * line or if force != 0. `what` is the caller's text (not owned).
+ * the printf-style text `fmt` followed by "  ETA hh:mm:ss", with `done` the progress on the scale
+ * [t_start, t_end] given to cmn_progress_start() (e.g. iterations out of a total), if `interval`
+ * has passed since the last line or if force != 0. The text is formatted only when printed.
  */
-void cmn_progress_task(struct cmn_progress *p, const char *what, double done, int force);
+void cmn_progress_task(struct cmn_progress *p, double done, int force, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 
 #ifdef __cplusplus
 }

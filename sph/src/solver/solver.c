@@ -783,12 +783,9 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
       for (int c = 0; c < 3; c++) memcpy(xbest[c], f->x[c], n * sizeof(double));
     }
     if (it == steps || !(amax > 0.0)) break;
-    {
-      char what[160];
-      snprintf(what, sizeof what, "repacking: step %ld of %ld  largest defect %.3g (least %.3g)",
-               it, steps, residual, best);
-      cmn_progress_task(&prog, what, (double)it, 0);
-    }
+    cmn_progress_task(&prog, (double)it, 0,
+                      "repacking: step %ld of %ld  largest defect %.3g (least %.3g)", it, steps,
+                      residual, best);
     const double mix = sqrt(vnorm2 / fnorm2);
     if (power > 0.0) {
       for (int c = 0; c < 3; c++)

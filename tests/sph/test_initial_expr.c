@@ -3,7 +3,8 @@
  * velocity components, pressure and density reach every fluid particle exactly as the expression
  * gives them (density through the Tait EOS for a pressure), masses follow; a wave (initial.wave)
  * keeps the fluid below its surface with its velocity and pressure; bad expressions and
- * inconsistent keys fail naming the key (non-fatal mode).
+ * inconsistent keys fail naming the key (non-fatal mode); so do probes and gauges outside the
+ * case's domain (sph_config_check_probes).
  */
 #include <math.h>
 #include <stdio.h>
@@ -170,10 +171,68 @@ static void test_initial_errors(void **state) {
                "initial.wave.stokes5: give exactly one of 'height' (H, m) and 'amplitude'");
 }
 
+/* sph_config_check_probes() on base + extra: its rc, its message in msg. */
+static int check_probes(const char *extra, char *msg, size_t len) {
+  char text[4096], err[512];
+  snprintf(text, sizeof text, "%s%s", base, extra);
+  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
+  assert_non_null(c);
+  struct sph_geometry g;
+  sph_geometry_read(&g, c);
+  cmn_case_set_fatal(c, 0);
+  struct sph_config cfg;
+  int rc = sph_config_read(&cfg, c, g.dim);
+  assert_int_equal(rc, 0);
+  struct sph_system s;
+  sph_system_from_geometry(&s, &g);
+  rc = sph_config_check_probes(&cfg, c, &s);
+  snprintf(msg, len, "%s", cmn_case_error(c));
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+  cmn_case_free(c);
+  return rc;
+}
+
+static void expect_probes(const char *extra, const char *want) {
+  char msg[1024];
+  const int rc = check_probes(extra, msg, sizeof msg);
+  if (want == NULL) {
+    if (rc != 0) print_error("rc %d, '%s'; wanted no error\n", rc, msg);
+    assert_int_equal(rc, 0);
+    return;
+  }
+  if (rc == 0 || !strstr(msg, want)) print_error("rc %d, '%s'; wanted '%s'\n", rc, msg, want);
+  assert_int_equal(rc, -1);
+  assert_non_null(strstr(msg, want));
+}
+
+/* The walls span 0 ... 0.5 × 0 ... 0.6 m and h = 2 dr = 0.1 m (the default h_over_dr). */
+static void test_probe_errors(void **state) {
+  (void)state;
+  /* inside, on a wall, within h outside it, and gauges above the water or below the floor */
+  expect_probes(
+      "probes: {pressure: [[0.25, 0.1], [0, 0.3], [-0.09, 0.3]],\n"
+      "         gauges: [[0.25, 0], [0.1, 5], [0.4, -3]]}\n"
+      "gravity: [0, -9.81]\n",
+      NULL);
+  expect_probes("probes: {pressure: [[0.25, 0.1], [0.25, 0.75]]}\n",
+                "case.yaml:9:34: probes.pressure[1]: the point y = 0.75 m is outside the case's "
+                "domain: the fluid and the walls (widened by h = 0.1 m) span x -0.1 ... 0.6 m, "
+                "y -0.1 ... 0.7 m");
+  expect_probes("probes: {gauges: [[0.25, 0], [0.9, 0]]}\ngravity: [0, -9.81]\n",
+                "probes.gauges[1]: the vertical line through (0.9, 0, 0) m (along -g) misses the "
+                "case's domain");
+  /* without gravity the line is along y; with gravity along x, along x */
+  expect_probes("probes: {gauges: [[-0.15, 0.3]]}\n", "probes.gauges[0]: the vertical line");
+  expect_probes("probes: {gauges: [[-3, 0.3]]}\ngravity: [-9.81, 0]\n", NULL);
+  expect_probes("probes: {gauges: [[-3, 0.75]]}\ngravity: [-9.81, 0]\n",
+                "probes.gauges[0]: the vertical line");
+}
+
 int main(void) {
   sabre_fp_traps_on();
-  const struct CMUnitTest tests[] = {cmocka_unit_test(test_initial_expressions),
-                                     cmocka_unit_test(test_initial_wave),
-                                     cmocka_unit_test(test_initial_errors)};
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_initial_expressions), cmocka_unit_test(test_initial_wave),
+      cmocka_unit_test(test_initial_errors), cmocka_unit_test(test_probe_errors)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -470,6 +470,17 @@ void sph_solver_explain_dt(const struct sph_solver *sv, double dt, char *msg, si
 int sph_config_check_initial(const struct sph_config *cfg, struct cmn_case *c,
                              const struct sph_system *s);
 
+/**
+ * Check that every probe of cfg lies in the case's domain before the set-up: a pressure probe
+ * (probes.pressure) inside the box spanned by the fluid and wall particles of s widened by h, a
+ * gauge (probes.gauges) on a vertical line (along −g; along y without gravity) that crosses that
+ * box. Periodic directions are not checked (positions wrap there). The first probe outside is an
+ * error at its key's file, line and column naming the point and the box (cmn_case_fail: exits in
+ * fatal mode). Returns 0 or -1.
+ */
+int sph_config_check_probes(const struct sph_config *cfg, struct cmn_case *c,
+                            const struct sph_system *s);
+
 /** `sabre-sph run CASE.yaml [--set k=v]... [--output DIR] [--restart FILE] [--threads N]`. */
 int sph_cmd_run(int argc, char **argv);
 

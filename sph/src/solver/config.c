@@ -389,3 +389,64 @@ int sph_config_check_initial(const struct sph_config *cfg, struct cmn_case *c,
   }
   return 0;
 }
+
+int sph_config_check_probes(const struct sph_config *cfg, struct cmn_case *c,
+                            const struct sph_system *s) {
+  if (cfg->nprobes + cfg->ngauges == 0) return 0;
+  const int dim = s->dim;
+  const double h = s->h;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int kind = 0; kind < SPH_NKINDS; kind++) {
+    const struct sph_parts *p = &s->part[kind];
+    for (size_t i = 0; i < p->n; i++)
+      for (int k = 0; k < dim; k++) {
+        lo[k] = fmin(lo[k], p->x[k][i]);
+        hi[k] = fmax(hi[k], p->x[k][i]);
+      }
+  }
+  for (int k = 0; k < dim; k++) {
+    lo[k] -= h;
+    hi[k] += h;
+  }
+  char box[256];
+  int len = snprintf(box, sizeof box, "the fluid and the walls (widened by h = %g m) span", h);
+  for (int k = 0; k < dim && len > 0 && (size_t)len < sizeof box; k++)
+    len += snprintf(box + len, sizeof box - (size_t)len, "%s %c %g ... %g m", k ? "," : "",
+                    "xyz"[k], lo[k], hi[k]);
+  for (int i = 0; i < cfg->nprobes; i++) {
+    const double *x = cfg->probes[i];
+    for (int k = 0; k < dim; k++) {
+      if (s->domain.periodic[k] || (x[k] >= lo[k] && x[k] <= hi[k])) continue;
+      char q[64];
+      snprintf(q, sizeof q, "probes.pressure[%d]", i);
+      return cmn_case_fail(c, q, "the point %c = %g m is outside the case's domain: %s", "xyz"[k],
+                           x[k], box);
+    }
+  }
+  /* A gauge's vertical line x + t up must cross the box: the slabs' parameter intervals meet. */
+  const double *g = cfg->gravity;
+  const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  const double up[3] = {gn > 0 ? -g[0] / gn : 0, gn > 0 ? -g[1] / gn : 1, gn > 0 ? -g[2] / gn : 0};
+  for (int i = 0; i < cfg->ngauges; i++) {
+    const double *x = cfg->gauges[i];
+    double t0 = -INFINITY, t1 = INFINITY;
+    for (int k = 0; k < dim; k++) {
+      if (s->domain.periodic[k]) continue;
+      if (fabs(up[k]) < 1e-12) {
+        if (!(x[k] >= lo[k] && x[k] <= hi[k])) t0 = INFINITY;
+        continue;
+      }
+      const double a = (lo[k] - x[k]) / up[k], b = (hi[k] - x[k]) / up[k];
+      t0 = fmax(t0, fmin(a, b));
+      t1 = fmin(t1, fmax(a, b));
+    }
+    if (t0 <= t1) continue;
+    char q[64];
+    snprintf(q, sizeof q, "probes.gauges[%d]", i);
+    return cmn_case_fail(c, q,
+                         "the vertical line through (%g, %g, %g) m (along -g) misses the case's "
+                         "domain: %s",
+                         x[0], x[1], x[2], box);
+  }
+  return 0;
+}

@@ -290,6 +290,7 @@ int sph_cmd_run(int argc, char **argv) {
   if (s.part[SPH_KIND_FLUID].n == 0)
     cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
   sph_config_check_initial(&cfg, c, &s);
+  sph_config_check_probes(&cfg, c, &s);
   /* the run directory only once the input is known good: no half-written output on bad input */
   cmn_cli_write_used(c, output);
   int *seg_wall;

@@ -26,8 +26,9 @@ static const char base[] =
     "fluid: {rho0: 1000, c0: 20}\n"
     "time: {end: 1}\n";
 
-/* Read base + extra into a solver (fatal mode off for the solver sections). Returns the rc of
- * sph_config_read() with its message in msg; the solver is set up only on success. */
+/* Read base + extra (fatal mode off for the solver sections) into a solver, or with sv NULL
+ * check its probes (sph_config_check_probes). Returns the rc of sph_config_read(), then of the
+ * probe check, with the message in msg; the solver is set up only on success. */
 static int setup(const char *extra, struct sph_solver *sv, char *msg, size_t len) {
   char text[4096], err[512];
   snprintf(text, sizeof text, "%s%s", base, extra);
@@ -39,13 +40,16 @@ static int setup(const char *extra, struct sph_solver *sv, char *msg, size_t len
   struct sph_config cfg;
   int rc = sph_config_read(&cfg, c, g.dim);
   if (rc == 0) rc = cmn_case_check_unused(c);
-  snprintf(msg, len, "%s", cmn_case_error(c));
   if (rc == 0) {
     struct sph_system s;
     sph_system_from_geometry(&s, &g);
-    sph_solver_init(sv, &cfg, &s, NULL, NULL);
+    if (sv)
+      sph_solver_init(sv, &cfg, &s, NULL, NULL);
+    else
+      rc = sph_config_check_probes(&cfg, c, &s);
     sph_system_free(&s);
   }
+  snprintf(msg, len, "%s", cmn_case_error(c));
   sph_geometry_free(&g);
   cmn_case_free(c);
   return rc;
@@ -171,31 +175,9 @@ static void test_initial_errors(void **state) {
                "initial.wave.stokes5: give exactly one of 'height' (H, m) and 'amplitude'");
 }
 
-/* sph_config_check_probes() on base + extra: its rc, its message in msg. */
-static int check_probes(const char *extra, char *msg, size_t len) {
-  char text[4096], err[512];
-  snprintf(text, sizeof text, "%s%s", base, extra);
-  struct cmn_case *c = cmn_case_parse(text, "case.yaml", err, sizeof err);
-  assert_non_null(c);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  cmn_case_set_fatal(c, 0);
-  struct sph_config cfg;
-  int rc = sph_config_read(&cfg, c, g.dim);
-  assert_int_equal(rc, 0);
-  struct sph_system s;
-  sph_system_from_geometry(&s, &g);
-  rc = sph_config_check_probes(&cfg, c, &s);
-  snprintf(msg, len, "%s", cmn_case_error(c));
-  sph_system_free(&s);
-  sph_geometry_free(&g);
-  cmn_case_free(c);
-  return rc;
-}
-
 static void expect_probes(const char *extra, const char *want) {
   char msg[1024];
-  const int rc = check_probes(extra, msg, sizeof msg);
+  const int rc = setup(extra, NULL, msg, sizeof msg);
   if (want == NULL) {
     if (rc != 0) print_error("rc %d, '%s'; wanted no error\n", rc, msg);
     assert_int_equal(rc, 0);

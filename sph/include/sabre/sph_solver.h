@@ -421,6 +421,8 @@ double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x);
 /** Free-surface elevation above the horizontal position of x (along −g): the highest fluid
  *  particle within h of the vertical line, plus Δr/2 [m]; NaN when there is none. */
 double sph_solver_gauge(const struct sph_solver *sv, const double *x);
+/** The gauges' vertical: the unit vector −g/|g| (y when g = 0), written to up. */
+void sph_gauge_up(const double gravity[3], double up[3]);
 /** Force of the fluid on each force group [N], out[group][3]: pressure −Σ_s p_s |s| n_s over the
  *  group's segments, plus the reaction to the viscous wall terms of Lap^γ (M 19–20). */
 void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]);

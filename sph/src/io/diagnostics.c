@@ -65,14 +65,21 @@ double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x) {
   return alpha > 0.0 ? sum / alpha : NAN;
 }
 
+void sph_gauge_up(const double gravity[3], double up[3]) {
+  const double *g = gravity;
+  const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  up[0] = gn > 0 ? -g[0] / gn : 0;
+  up[1] = gn > 0 ? -g[1] / gn : 1;
+  up[2] = gn > 0 ? -g[2] / gn : 0;
+}
+
 double sph_solver_gauge(const struct sph_solver *sv, const double *x) {
   /* Highest fluid particle (along −g) within h of the gauge's vertical line, plus Δr/2 (h: at
    * least one particle of the top layer is always that close, even when the layer shifts). */
   const struct sph_system *s = &sv->sys;
   const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  const double *g = sv->cfg.gravity;
-  const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  const double up[3] = {gn > 0 ? -g[0] / gn : 0, gn > 0 ? -g[1] / gn : 1, gn > 0 ? -g[2] / gn : 0};
+  double up[3];
+  sph_gauge_up(sv->cfg.gravity, up);
   double top = -INFINITY;
   for (size_t b = 0; b < f->n; b++) {
     const double xb[3] = {f->x[0][b], f->x[1][b], f->x[2][b]};

@@ -424,9 +424,8 @@ int sph_config_check_probes(const struct sph_config *cfg, struct cmn_case *c,
     }
   }
   /* A gauge's vertical line x + t up must cross the box: the slabs' parameter intervals meet. */
-  const double *g = cfg->gravity;
-  const double gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  const double up[3] = {gn > 0 ? -g[0] / gn : 0, gn > 0 ? -g[1] / gn : 1, gn > 0 ? -g[2] / gn : 0};
+  double up[3];
+  sph_gauge_up(cfg->gravity, up);
   for (int i = 0; i < cfg->ngauges; i++) {
     const double *x = cfg->gauges[i];
     double t0 = -INFINITY, t1 = INFINITY;

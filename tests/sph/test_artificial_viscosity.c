@@ -4,7 +4,9 @@
  *   - α is the laminar viscosity ν_α = α h c0 / (2(d + 2)) added to fluid.nu: a run with α and
  *     one with that ν are the same, bit for bit;
  *   - the repacking ends where it ends whatever the viscosity and the wall impedance (its
- *     pseudo-velocities must not feel them), bit for bit.
+ *     pseudo-velocities must not feel them), bit for bit;
+ *   - repack.perturbation: the perturbed start is the same on every run (a seeded draw), the
+ *     repacking still converges from it, and it is part of the repacking (no steps, no draw).
  */
 #include <math.h>
 #include <stdio.h>
@@ -98,10 +100,41 @@ static void test_repack_ignores_velocity_terms(void **state) {
   fixture_solver_destroy(none);
 }
 
+/* repack.perturbation = 0.05 Δr: a start off the lattice (its defect larger than the
+ * lattice's), the same on two runs bit for bit, converging as from the lattice; without
+ * repacking steps the perturbation does nothing. */
+static void test_repack_perturbed_start(void **state) {
+  (void)state;
+  const char *lattice = "repack: {steps: 300}\n";
+  const char *perturbed = "repack: {steps: 300, perturbation: 0.05}\n";
+  struct sph_solver *plain = shear_solver("", "", lattice);
+  struct sph_solver *one = shear_solver("", "", perturbed);
+  struct sph_solver *two = shear_solver("", "", perturbed);
+  printf("repacking defect from the lattice %.3g -> %.3g; perturbed by 0.05 dr %.3g -> %.3g\n",
+         plain->repack_residual[0], plain->repack_residual[1], one->repack_residual[0],
+         one->repack_residual[1]);
+  assert_true(one->cfg.repack_perturbation == 0.05);
+  assert_true(plain->cfg.repack_perturbation == 0.0);
+  assert_true(one->repack_residual[0] > plain->repack_residual[0]);
+  assert_true(one->repack_residual[1] < 1e-3 * one->repack_residual[0]);
+  assert_true(same_fluid(one, two));
+  assert_false(same_fluid(one, plain));
+  /* no steps: neither a repacking nor a draw */
+  struct sph_solver *none = shear_solver("", "", "");
+  struct sph_solver *none_p = shear_solver("", "", "repack: {steps: 0, perturbation: 0.05}\n");
+  assert_true(same_fluid(none, none_p));
+  fixture_solver_destroy(plain);
+  fixture_solver_destroy(one);
+  fixture_solver_destroy(two);
+  fixture_solver_destroy(none);
+  fixture_solver_destroy(none_p);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_equals_laminar),
       cmocka_unit_test(test_repack_ignores_velocity_terms),
+      cmocka_unit_test(test_repack_perturbed_start),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

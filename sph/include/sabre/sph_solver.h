@@ -226,6 +226,9 @@ struct sph_config {
   int vertex_volume;   /**< enum sph_vertex_volume */
   double vertex_layer; /**< thickness of the wall layer of the vertex volumes [Δr] */
   long repack_steps;   /**< pseudo-time steps of the initial repacking (0: none) */
+  /** largest random displacement of the repacking's start, per coordinate, of the particles it
+   *  moves [Δr] (repack.perturbation; 0: the lattice as it is) */
+  double repack_perturbation;
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   int list_rebuild;   /**< enum sph_list_rebuild */
@@ -312,7 +315,8 @@ struct sph_solver {
   int *vert_group;         /**< force group of each vertex (−1 none) */
   size_t cap[SPH_NKINDS];
   double vertex_phi;          /**< vertex layer thickness / Δr of the vertex masses [-] */
-  double repack_residual[2];  /**< largest defect × h before and after the repacking [-] */
+  double repack_residual[2];  /**< largest defect × h at the start (after the perturbation) and at
+                               *   the end of the repacking [-] */
   size_t repack_fixed;        /**< fluid particles held by the repacking's lid */
   double timing[SPH_NPHASES]; /**< wall seconds spent in each phase since set-up (the set-up's
                                    own evaluations included; zero it to time a run of steps) */
@@ -371,7 +375,11 @@ void sph_solver_evaluate(struct sph_solver *sv);
  * pseudo-velocities; both are restored on return): the force is then
  * −(2p/ρ) times the defect, the gradient of a potential, so the damped motion settles. Particles
  * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
- * 2h stay where they are (a lid: a free surface has a defect of its own). The pseudo-dynamics is
+ * 2h stay where they are (a lid: a free surface has a defect of its own). The other particles
+ * first move by a uniform random displacement in [−ε, ε] Δr per coordinate, ε =
+ * cfg.repack_perturbation, from GSL's mt19937 at its default seed, drawn in particle order (the
+ * same start on every run and thread count): a lattice is a symmetric critical point of the
+ * defect's potential that the pseudo-dynamics leaves slowly. The pseudo-dynamics is
  * FIRE (Bitzek et al. 2006: velocities turned towards the force, the step grown while the power
  * stays positive, the motion stopped when it turns negative), starting from the solver's CFL and
  * force limits, with at most h/10 of displacement per step. On return the fluid velocities are

@@ -303,6 +303,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                           &cfg->vertex_volume));
   TRY(cmn_case_opt_double(c, "numerics.vertex_layer", 0.5, 0.0, 1.0, &cfg->vertex_layer));
   TRY(cmn_case_opt_long(c, "repack.steps", 0, 0, 10000000L, &cfg->repack_steps));
+  TRY(cmn_case_opt_double(c, "repack.perturbation", 0.0, 0.0, 0.25, &cfg->repack_perturbation));
   TRY(opt_fraction(c, "numerics.cfl", 0.3, &cfg->cfl));
   TRY(opt_fraction(c, "numerics.viscous_factor", 0.125, &cfg->viscous_factor));
   TRY(opt_fraction(c, "numerics.force_factor", 0.25, &cfg->force_factor));

@@ -5,6 +5,7 @@
  * correction M(81), or the Brezzi-type term of J §II.C), the time-step limits, and the
  * predictor–corrector with the time-summation continuity M(13), J(10), M(84).
  */
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -740,6 +741,22 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   }
   sv->repack_fixed = 0;
   for (size_t a = 0; a < n; a++) sv->repack_fixed += fixed[a] != 0;
+  /* The start perturbed: on the lattice the defect's potential has a symmetric critical point that
+   * FIRE leaves slowly and not always towards the deepest minimum (docs/sph-solver.md §8). */
+  const double eps = sv->cfg.repack_perturbation * sv->sys.dr;
+  if (eps > 0.0) {
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    if (rng == NULL) cmn_error("repacking: out of memory for the random generator");
+    for (size_t a = 0; a < n; a++)
+      for (int c = 0; c < sv->sys.dim; c++) {
+        const double u = gsl_rng_uniform(rng);
+        if (!fixed[a]) f->x[c][a] += eps * (2.0 * u - 1.0);
+      }
+    gsl_rng_free(rng);
+    wrap(sv);
+    sv->gamma_current = 0;
+    sph_solver_evaluate(sv);
+  }
   const double p_r = rmn_eos_pressure(&sv->eos, rho_r);
   const double v_ref = sqrt(2.0 * p_r / rho_r);
   /* FIRE (Bitzek et al. 2006, Phys. Rev. Lett. 97:170201) with its usual constants: the velocity

@@ -6,7 +6,8 @@
  *   - the repacking ends where it ends whatever the viscosity and the wall impedance (its
  *     pseudo-velocities must not feel them), bit for bit;
  *   - repack.perturbation: the perturbed start is the same on every run (a seeded draw), the
- *     repacking still converges from it, and it is part of the repacking (no steps, no draw).
+ *     repacking still converges from it, it is part of the repacking (no steps, no draw), and
+ *     the particles the repacking holds at a free surface are not perturbed.
  */
 #include <math.h>
 #include <stdio.h>
@@ -130,11 +131,53 @@ static void test_repack_perturbed_start(void **state) {
   fixture_solver_destroy(none_p);
 }
 
+/* Under a free surface (the shear box half full, no lid) the repacking holds the top rows; a
+ * perturbed start must leave exactly those where they were: the particles at their lattice
+ * positions after a perturbed repacking are the held ones, as many as the repacking reports. */
+static void test_repack_perturbation_spares_the_lid(void **state) {
+  (void)state;
+  const char *text =
+      "geometry:\n"
+      "  dimension: 2\n"
+      "  dr: 0.025\n"
+      "  h_over_dr: 2\n"
+      "  first_row: 1\n"
+      "  walls: [{type: box, lo: [0, 0], hi: [0.5, 0.4]}]\n"
+      "  fluid: [{type: box, lo: [0, 0], hi: [0.5, 0.2]}]\n"
+      "fluid: {rho0: 1000, c0: 20}\n"
+      "initial: {pressure: 1000}\n"
+      "numerics: {vertex_volume: geometric}\n"
+      "time: {end: 1}\n"
+      "%s";
+  char lattice_case[2048], perturbed_case[2048];
+  snprintf(lattice_case, sizeof lattice_case, text, "");
+  snprintf(perturbed_case, sizeof perturbed_case, text,
+           "repack: {steps: 50, perturbation: 0.05}\n");
+  struct sph_solver *lattice = fixture_solver_from_case(lattice_case);
+  struct sph_solver *perturbed = fixture_solver_from_case(perturbed_case);
+  const struct sph_parts *fl = &lattice->sys.part[SPH_KIND_FLUID];
+  const struct sph_parts *fp = &perturbed->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(fl->n, fp->n);
+  size_t unmoved = 0;
+  for (size_t a = 0; a < fp->n; a++) {
+    int same = 1;
+    for (int c = 0; c < 2; c++) same = same && fp->x[c][a] == fl->x[c][a];
+    unmoved += (size_t)same;
+  }
+  printf("free-surface box: %zu of %zu particles held, %zu at their lattice positions\n",
+         perturbed->repack_fixed, fp->n, unmoved);
+  assert_true(perturbed->repack_fixed > 0 && perturbed->repack_fixed < fp->n);
+  assert_int_equal(unmoved, perturbed->repack_fixed);
+  fixture_solver_destroy(lattice);
+  fixture_solver_destroy(perturbed);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_equals_laminar),
       cmocka_unit_test(test_repack_ignores_velocity_terms),
       cmocka_unit_test(test_repack_perturbed_start),
+      cmocka_unit_test(test_repack_perturbation_spares_the_lid),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

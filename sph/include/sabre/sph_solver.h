@@ -377,9 +377,10 @@ void sph_solver_evaluate(struct sph_solver *sv);
  * on a free surface (kernel completeness Σ_{b∈P} V_b w_ab / γ_a < 0.75) and their neighbours within
  * 2h stay where they are (a lid: a free surface has a defect of its own). The other particles
  * first move by a uniform random displacement in [−ε, ε] Δr per coordinate, ε =
- * cfg.repack_perturbation, from GSL's mt19937 at its default seed, drawn in particle order (the
- * same start on every run and thread count): a lattice is a symmetric critical point of the
- * defect's potential that the pseudo-dynamics leaves slowly. The pseudo-dynamics is
+ * cfg.repack_perturbation (0, the default: none), from GSL's mt19937 at its default seed, one
+ * draw per particle and coordinate in particle order, held or not (the same start on every run
+ * and thread count): a lattice is a symmetric critical point of the defect's potential, where
+ * the pseudo-dynamics can stop on a saddle. The pseudo-dynamics is
  * FIRE (Bitzek et al. 2006: velocities turned towards the force, the step grown while the power
  * stays positive, the motion stopped when it turns negative), starting from the solver's CFL and
  * force limits, with at most h/10 of displacement per step. On return the fluid velocities are

@@ -1,0 +1,117 @@
+/*
+ * The linearised dynamics of the fluid about a state at rest (docs/sph-solver.md §7.1, "The free
+ * surface's static states are linearly unstable"): J = ∂a/∂x by central differences of the
+ * solver's own accelerations, and the growth rates of ẍ = J x from J's eigenvalues (GSL).
+ */
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "operators/pair.h"
+#include "sabre/common.h"
+#include "sabre/sph_solver.h"
+
+/* Σ_{b∈F∪V} m_b w_ab of fluid particle a over its neighbour lists (current positions). */
+static double kernel_sum(const struct sph_solver *sv, size_t a) {
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  double sum = 0.0;
+  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
+    const struct sph_parts *pb = &s->part[kind];
+    const struct sph_nlist *nl = &sv->nb.list[kind];
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      struct sph_pair pr;
+      const size_t b = nl->index[q];
+      if (sph_pair_eval(&sv->kernel, s, f, a, pb, b, &pr)) sum += pb->mass[b] * pr.w;
+    }
+  }
+  return sum;
+}
+
+/* The reference state: positions x0, γ⁰ρ⁰ and the kernel sums S⁰ at x0. */
+struct reference {
+  double *x0[3], *grho0, *s0;
+};
+
+/* Accelerations at x0 + u (u NULL: x0) with ρ_a = (γ⁰_a ρ⁰_a + S_a(x) − S⁰_a)/γ_a(x), into out. */
+static void accelerations(struct sph_solver *sv, const struct reference *ref, const double *u,
+                          double *out) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const int dim = sv->sys.dim;
+  for (size_t a = 0; a < f->n; a++)
+    for (int c = 0; c < dim; c++) f->x[c][a] = ref->x0[c][a] + (u ? u[a * dim + c] : 0.0);
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv); /* lists and γ at x (forces of the stale densities, overwritten) */
+  for (size_t a = 0; a < f->n; a++)
+    f->rho[a] = (ref->grho0[a] + kernel_sum(sv, a) - ref->s0[a]) / f->gamma[a];
+  sph_solver_boundary_values(sv);
+  sph_solver_forces(sv);
+  for (size_t a = 0; a < f->n; a++)
+    for (int c = 0; c < dim; c++) out[a * dim + c] = sv->acc[c][a];
+}
+
+void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const int dim = sv->sys.dim;
+  const size_t n = f->n * (size_t)dim;
+  struct reference ref = {{NULL, NULL, NULL},
+                          cmn_malloc((f->n + 1) * sizeof(double)),
+                          cmn_malloc((f->n + 1) * sizeof(double))};
+  double *rho0 = cmn_malloc((f->n + 1) * sizeof(double));
+  memcpy(rho0, f->rho, f->n * sizeof(double));
+  for (int c = 0; c < dim; c++) {
+    ref.x0[c] = cmn_malloc((f->n + 1) * sizeof(double));
+    memcpy(ref.x0[c], f->x[c], f->n * sizeof(double));
+  }
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  for (size_t a = 0; a < f->n; a++) {
+    ref.grho0[a] = f->gamma[a] * f->rho[a];
+    ref.s0[a] = kernel_sum(sv, a);
+  }
+  double *u = cmn_calloc(n + 1, sizeof(double)), *ap = cmn_malloc((n + 1) * sizeof(double)),
+         *am = cmn_malloc((n + 1) * sizeof(double));
+  for (size_t j = 0; j < n; j++) {
+    u[j] = eps;
+    accelerations(sv, &ref, u, ap);
+    u[j] = -eps;
+    accelerations(sv, &ref, u, am);
+    u[j] = 0.0;
+    for (size_t i = 0; i < n; i++) J[i * n + j] = (ap[i] - am[i]) / (2.0 * eps);
+  }
+  /* the state as it was, evaluated */
+  for (int c = 0; c < dim; c++) memcpy(f->x[c], ref.x0[c], f->n * sizeof(double));
+  memcpy(f->rho, rho0, f->n * sizeof(double));
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  free(u);
+  free(ap);
+  free(am);
+  free(rho0);
+  free(ref.grho0);
+  free(ref.s0);
+  for (int c = 0; c < dim; c++) free(ref.x0[c]);
+}
+
+int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate) {
+  gsl_matrix_view m = gsl_matrix_view_array(J, n, n);
+  gsl_vector_complex *ev = gsl_vector_complex_alloc(n);
+  gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(n);
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  const int status = gsl_eigen_nonsymm(&m.matrix, ev, ws);
+  gsl_set_error_handler(old);
+  if (status == GSL_SUCCESS) {
+    for (size_t i = 0; i < n; i++) {
+      const gsl_complex l = gsl_vector_complex_get(ev, i);
+      lambda_re[i] = GSL_REAL(l);
+      lambda_im[i] = GSL_IMAG(l);
+      rate[i] = GSL_REAL(gsl_complex_sqrt(l));
+    }
+  }
+  gsl_eigen_nonsymm_free(ws);
+  gsl_vector_complex_free(ev);
+  return status == GSL_SUCCESS ? 0 : -1;
+}

@@ -422,12 +422,12 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
  * The linearised dynamics of the fluid about its current state, meant for a state at rest
  * (docs/sph-solver.md §7.1): J = ∂a/∂x [1/s²], a the fluid accelerations of sph_solver_evaluate()
  * and x the fluid positions, by central differences with displacements ±eps [m] of one coordinate
- * at a time (eps about 10⁻⁷ Δr; 4n evaluations). Each particle's density follows the time
- * summation from the current state, ρ_a(x) = (γ_a ρ_a + Σ_{b∈F∪V} m_b [w(r_ab) − w(r⁰_ab)])/γ_a(x)
- * (masses fixed, no diffusion: the volume diffusion acts on time scales of its own); lists, the
- * geometric γ and the wall values are formed afresh at every evaluation (with numerics.gamma
- * dynamic, γ is state and keeps its value). Velocity-dependent terms see the current velocities.
- * Closed domains: open boundaries (sv->open) are not linearised.
+ * at a time (eps about 10⁻⁷ Δr; 2n evaluations of lists, γ, wall values and forces). Each
+ * particle's density follows the time summation from the current state, ρ_a(x) = (γ_a ρ_a +
+ * Σ_{b∈F∪V} m_b [w(r_ab) − w(r⁰_ab)])/γ_a(x) (masses fixed, no diffusion: the volume diffusion acts
+ * on time scales of its own); lists, the geometric γ and the wall values are formed afresh at every
+ * evaluation (with numerics.gamma dynamic, γ is state and keeps its value). Velocity-dependent
+ * terms see the current velocities. Closed domains: open boundaries (sv->open) are not linearised.
  * J: caller-owned, n × n row-major, n = dim × fluid count, index a·dim + c for coordinate c of
  * particle a. The positions and densities are restored and evaluated again on return.
  */
@@ -436,7 +436,8 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J);
  * Eigenvalues λ of the n × n row-major matrix J (destroyed; GSL gsl_eigen_nonsymm) into
  * lambda_re/lambda_im, and the growth rates rate[i] = Re sqrt(λ_i) [1/s] of ẍ = J x (a real λ > 0
  * is a static instability; a complex λ gives an oscillation that grows at that rate or decays), in
- * GSL's order. Returns 0, or −1 if the QR iteration did not converge (outputs unset).
+ * GSL's order (n = 0: nothing). Returns 0, or −1 if the QR iteration did not converge (outputs
+ * unset).
  */
 int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate);
 

@@ -97,6 +97,7 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J) {
 }
 
 int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate) {
+  if (n == 0) return 0;
   gsl_matrix_view m = gsl_matrix_view_array(J, n, n);
   gsl_vector_complex *ev = gsl_vector_complex_alloc(n);
   gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(n);

@@ -116,7 +116,7 @@ static void test_acoustic_mode_of_a_closed_box(void **state) {
   assert_true(fabs(q[1] - 1.0) <= 0.5 * fabs(q[0] - 1.0));
 }
 
-static void test_closed_box_is_stable(void **state) {
+static void test_closed_box_has_no_static_instability(void **state) {
   (void)state;
   struct sph_solver *sv = box_solver(0.025, "initial: {pressure: 1000}\n");
   struct spectrum sp = spectrum_of(sv);
@@ -148,7 +148,7 @@ static void test_lid_box_under_gravity_is_stable(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_acoustic_mode_of_a_closed_box),
-      cmocka_unit_test(test_closed_box_is_stable),
+      cmocka_unit_test(test_closed_box_has_no_static_instability),
       cmocka_unit_test(test_lid_box_under_gravity_is_stable),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -61,6 +61,7 @@ static void test_errors(void **state) {
   expect("numerics: {diffusion: laplace}\n", "numerics.diffusion", "ferrari");
   expect("numerics: {gradient_k: 3}\n", "numerics.gradient_k", "");
   expect("numerics: {artificial_viscosity: -0.01}\n", "numerics.artificial_viscosity", "");
+  expect("repack: {steps: 100, perturbation: 0.3}\n", "repack.perturbation", "");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");

@@ -426,10 +426,10 @@ int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t ms
  * particle's density follows the time summation from the current state, ρ_a(x) = (γ_a ρ_a +
  * Σ_{b∈F∪V} m_b [w(r_ab) − w(r⁰_ab)])/γ_a(x) (masses fixed, no diffusion: the volume diffusion acts
  * on time scales of its own); lists, the geometric γ and the wall values are formed afresh at every
- * evaluation (with numerics.gamma dynamic, γ is state and keeps its value). Velocity-dependent
+ * evaluation (also with numerics.gamma dynamic, whose γ is restored on return). Velocity-dependent
  * terms see the current velocities. Closed domains: open boundaries (sv->open) are not linearised.
  * J: caller-owned, n × n row-major, n = dim × fluid count, index a·dim + c for coordinate c of
- * particle a. The positions and densities are restored and evaluated again on return.
+ * particle a. The positions, densities and γ are restored and evaluated again on return.
  */
 void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J);
 /**

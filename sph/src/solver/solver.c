@@ -16,6 +16,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_robin.h"
 #include "sabre/sph_solver.h"
+#include "solver/solver_internal.h"
 
 static double *grow(double *p, size_t cap) { return cmn_realloc(p, (cap ? cap : 1) * sizeof *p); }
 
@@ -545,6 +546,11 @@ static double kernel_sum(const struct sph_solver *sv, size_t a, const double *co
     sum += pb->mass[b] * sph_kernel_w_inline(k, sqrt(r2));
   }
   return sum;
+}
+
+double sph_solver_kernel_sum(const struct sph_solver *sv, size_t a) {
+  const double *const *x = (const double *const *)sv->sys.part[SPH_KIND_FLUID].x;
+  return kernel_sum(sv, a, x, SPH_KIND_VERTEX, kernel_sum(sv, a, x, SPH_KIND_FLUID, 0.0));
 }
 
 /* γ_a ρ_a = γ^n ρ^n + Σ_{b∈P} m_b w_ab − Σ_{b∈P} m_b w_ab^n + fac · D, J(10), M(84): positions now

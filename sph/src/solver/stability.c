@@ -10,31 +10,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "operators/pair.h"
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
-
-/* Σ_{b∈F∪V} m_b w_ab of fluid particle a over its neighbour lists (current positions). */
-static double kernel_sum(const struct sph_solver *sv, size_t a) {
-  const struct sph_system *s = &sv->sys;
-  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  double sum = 0.0;
-  for (int kind = SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
-    const struct sph_parts *pb = &s->part[kind];
-    const struct sph_nlist *nl = &sv->nb.list[kind];
-    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-      struct sph_pair pr;
-      const size_t b = nl->index[q];
-      if (sph_pair_eval(&sv->kernel, s, f, a, pb, b, &pr)) sum += pb->mass[b] * pr.w;
-    }
-  }
-  return sum;
-}
+#include "solver/solver_internal.h"
 
 /* The reference state: positions x0, γ⁰ρ⁰ and the kernel sums S⁰ at x0. */
 struct reference {
   double *x0[3], *grho0, *s0;
 };
+
+/* Lists and the geometric γ at the current positions (what a step's evaluation forms, without
+ * its forces). */
+static void lists_and_gamma(struct sph_solver *sv) {
+  sph_solver_sync(sv);
+  sph_nbrs_build(&sv->nb, &sv->sys, sv->cfg.skin_over_h * sv->sys.h);
+  sph_nbrs_gamma(&sv->nb, &sv->sys, &sv->kernel);
+}
 
 /* Accelerations at x0 + u (u NULL: x0) with ρ_a = (γ⁰_a ρ⁰_a + S_a(x) − S⁰_a)/γ_a(x), into out. */
 static void accelerations(struct sph_solver *sv, const struct reference *ref, const double *u,
@@ -43,10 +34,9 @@ static void accelerations(struct sph_solver *sv, const struct reference *ref, co
   const int dim = sv->sys.dim;
   for (size_t a = 0; a < f->n; a++)
     for (int c = 0; c < dim; c++) f->x[c][a] = ref->x0[c][a] + (u ? u[a * dim + c] : 0.0);
-  sph_solver_sync(sv);
-  sph_solver_evaluate(sv); /* lists and γ at x (forces of the stale densities, overwritten) */
+  lists_and_gamma(sv);
   for (size_t a = 0; a < f->n; a++)
-    f->rho[a] = (ref->grho0[a] + kernel_sum(sv, a) - ref->s0[a]) / f->gamma[a];
+    f->rho[a] = (ref->grho0[a] + sph_solver_kernel_sum(sv, a) - ref->s0[a]) / f->gamma[a];
   sph_solver_boundary_values(sv);
   sph_solver_forces(sv);
   for (size_t a = 0; a < f->n; a++)
@@ -60,17 +50,18 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J) {
   struct reference ref = {{NULL, NULL, NULL},
                           cmn_malloc((f->n + 1) * sizeof(double)),
                           cmn_malloc((f->n + 1) * sizeof(double))};
-  double *rho0 = cmn_malloc((f->n + 1) * sizeof(double));
+  double *rho0 = cmn_malloc((f->n + 1) * sizeof(double)),
+         *gamma0 = cmn_malloc((f->n + 1) * sizeof(double));
   memcpy(rho0, f->rho, f->n * sizeof(double));
+  memcpy(gamma0, f->gamma, f->n * sizeof(double)); /* state with numerics.gamma dynamic */
   for (int c = 0; c < dim; c++) {
     ref.x0[c] = cmn_malloc((f->n + 1) * sizeof(double));
     memcpy(ref.x0[c], f->x[c], f->n * sizeof(double));
   }
-  sph_solver_sync(sv);
-  sph_solver_evaluate(sv);
+  lists_and_gamma(sv);
   for (size_t a = 0; a < f->n; a++) {
     ref.grho0[a] = f->gamma[a] * f->rho[a];
-    ref.s0[a] = kernel_sum(sv, a);
+    ref.s0[a] = sph_solver_kernel_sum(sv, a);
   }
   double *u = cmn_calloc(n + 1, sizeof(double)), *ap = cmn_malloc((n + 1) * sizeof(double)),
          *am = cmn_malloc((n + 1) * sizeof(double));
@@ -85,12 +76,14 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J) {
   /* the state as it was, evaluated */
   for (int c = 0; c < dim; c++) memcpy(f->x[c], ref.x0[c], f->n * sizeof(double));
   memcpy(f->rho, rho0, f->n * sizeof(double));
+  memcpy(f->gamma, gamma0, f->n * sizeof(double));
   sph_solver_sync(sv);
   sph_solver_evaluate(sv);
   free(u);
   free(ap);
   free(am);
   free(rho0);
+  free(gamma0);
   free(ref.grho0);
   free(ref.s0);
   for (int c = 0; c < dim; c++) free(ref.x0[c]);

@@ -11,6 +11,9 @@
  *   sabre-sph scalar CASE.yaml [--output DIR] [--set key=value ...]
  *       scalar wave equation on fixed particles with Robin/Neumann/Dirichlet walls
  *       (sph_cmd_scalar, sph/src/scalar/scalar.c; docs/sph-scalar.md).
+ *   sabre-sph stability CASE.yaml [--output DIR] [--set key=value ...] [--modes N] [--eps E]
+ *       the linearised dynamics of a closed case about its start: growth rates and where the
+ *       modes live (sph_cmd_stability, sph/src/solver/stability_cmd.c; docs/sph-solver.md §7.1).
  *   sabre-sph wave stokes5|solitary [options] --at ... [--at ...]
  *       wave generators (Stokes fifth order, solitary wave) at given points and times, one JSON
  *       object per point on stdout (sph_cmd_wave, sph/src/analytic/wave_command.c;
@@ -35,11 +38,9 @@ struct command {
   int (*run)(int argc, char **argv); /* argv[0] is the command name */
 };
 
-static const struct command commands[] = {{"run", sph_cmd_run},
-                                          {"gamma", sph_cmd_gamma},
-                                          {"mesh", sph_cmd_mesh},
-                                          {"scalar", sph_cmd_scalar},
-                                          {"wave", sph_cmd_wave}};
+static const struct command commands[] = {
+    {"run", sph_cmd_run},       {"gamma", sph_cmd_gamma},         {"mesh", sph_cmd_mesh},
+    {"scalar", sph_cmd_scalar}, {"stability", sph_cmd_stability}, {"wave", sph_cmd_wave}};
 
 /*
  * OpenMP threads that wait for work spin by default; on a machine whose cores are busy with other
@@ -78,6 +79,7 @@ int main(int argc, char **argv) {
     if (strcmp(argv[1], commands[i].name) == 0)
       return cmn_stdout_status(commands[i].run(argc - 1, argv + 1));
   cmn_input_error(
-      "unknown command '%s' (commands: run, gamma, mesh, scalar, wave; see sabre-sph --help)",
+      "unknown command '%s' (commands: run, gamma, mesh, scalar, stability, wave; see sabre-sph "
+      "--help)",
       argv[1]);
 }

@@ -2,8 +2,9 @@
 # The sabre-sph command line as a user meets it: --help/--version, the default thread count and
 # wait policy, start-up and closing summaries, bounded inputs that stop at once instead of hanging
 # (time.output_interval, dr, huge walls, h_over_dr, self-crossing polygons), time.max_steps (exit
-# 3), messages that say why and where, the wave generators (`wave`: JSON lines, bad options), and
-# stdout write errors.
+# 3), messages that say why and where, the linear stability analysis (`stability`: summary, modes
+# file, refused cases), the wave generators (`wave`: JSON lines, bad options), and stdout write
+# errors.
 # Usage: cli.sh PATH/TO/sabre-sph SOURCE_DIR
 set -u
 tool=$1 src=$2
@@ -42,7 +43,7 @@ run() { expect "$@"; hasnt "$src/" err; } # no message names a source file by it
 
 # --version, and --help on every command
 run 0 10 "$tool" --version; has '^sabre-sph [0-9]*\.[0-9]*\.[0-9]*$' out
-for c in run mesh scalar gamma wave; do run 0 10 "$tool" $c --help; has '^usage:' out; done
+for c in run mesh scalar gamma stability wave; do run 0 10 "$tool" $c --help; has '^usage:' out; done
 run 0 10 "$tool" --help; has 'sabre-sph <command> --help' out
 
 # the default: one thread with a passive wait policy, without --threads or OMP_* variables;
@@ -118,10 +119,56 @@ has 'time step 0 s is not positive: fluid particle id .* non-finite state' err
 run 2 10 "$tool" run "$tmp/case.yaml" --output /dev/null/out
 has "cannot create the output directory '/dev/null/out': Not a directory" err
 
+# stability: the summary on stdout, every mode in DIR/stability.csv (fastest first), the counts
+# consistent with the file; a lid box (no free surface, p > 0 at the lid) has no static
+# instability; open boundaries, too many unknowns and bad options are refused before any output
+py=/usr/bin/python3
+run 0 60 "$tool" stability "$tmp/case.yaml" --output "$tmp/st" --modes 3
+has '^unknowns: 128 (64 fluid particles x 2)' out
+has '^static instabilities (real lambda > 0): [1-9]' out # the free surface's (docs §7.1)
+if $py - "$tmp/st/stability.csv" "$tmp/out" <<'PY'; then ok; else bad "stability.csv: $(head -3 "$tmp/st/stability.csv")"; fi
+import csv, re, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+rates = [float(r["rate"]) for r in rows]
+nstatic = sum(float(r["lambda_im"]) == 0 and float(r["lambda_re"]) > 0 for r in rows)
+want = int(re.search(r"real lambda > 0\): (\d+)", open(sys.argv[2]).read()).group(1))
+ok = (len(rows) == 128 and rates == sorted(rates, reverse=True) and nstatic == want
+      and all(0 < float(r["share"]) <= 1 and 1 <= float(r["participation"]) <= 64 for r in rows)
+      and all(abs(sum(float(r[k]) ** 2 for k in ("dir_x", "dir_y", "dir_z")) - 1) < 1e-12 for r in rows))
+sys.exit(0 if ok else 1)
+PY
+cat >"$tmp/lid.yaml" <<'YAML'
+geometry:
+  dimension: 2
+  dr: 0.025
+  h_over_dr: 2
+  first_row: 1
+  walls: [{type: box, lo: [0, 0], hi: [0.3, 0.2]}]
+  fluid: [{type: box, lo: [0, 0], hi: [0.3, 0.2]}]
+fluid: {rho0: 1000, c0: 20}
+gravity: [0, -9.81]
+initial: {pressure: hydrostatic, free_surface: 0.5}
+numerics: {vertex_volume: geometric}
+repack: {steps: 1000}
+time: {end: 1}
+YAML
+run 0 60 "$tool" stability "$tmp/lid.yaml" --output "$tmp/st2" --modes 0
+has '^static instabilities (real lambda > 0): 0$' out
+has '^largest growth rate: 0\.0[0-4]' out # as tests/sph/test_linear_stability.c (0.012 1/s)
+cp "$src/cases/sph/open_channel_2d/case.yaml" "$tmp/open.yaml"
+run 2 20 "$tool" stability "$tmp/open.yaml" --output "$tmp/st3"
+has 'open_boundaries: stability is for closed domains' err
+[ -e "$tmp/st3" ] && bad "a stability directory was created for a refused case" || ok
+run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/st4" --max-unknowns 100
+has '128 unknowns, more than the 100 of stability' err
+run 2 10 "$tool" stability "$tmp/case.yaml" --output "$tmp/st5" --modes -1
+has '\--modes: expected a whole number >= 0' err
+run 2 10 "$tool" stability "$tmp/case.yaml" --output "$tmp/st5" --eps 0
+has '\--eps: expected a number in (0, 0.01\]' err
+
 # wave generators: one JSON object per --at point (parsed by Python, as tests/riemann/cli.sh does),
 # with the documented keys; values checked for consistency (the crest of J IV.B's wave at x = ct,
 # the period given back as a length, the solitary crest D + A with p = 0 on it)
-py=/usr/bin/python3
 # wave_json 'python expression over the list of objects d' args...
 wave_json() {
   local expr=$1; shift

@@ -7,7 +7,10 @@
  *   - that box, repacked, has no static instability (no real λ > 0; a complex pair grows at
  *     0.40 1/s, printed);
  *   - the same box full of water under gravity, closed by a lid (no free surface), has no
- *     growing mode at all (every Re sqrt(λ) ≤ RATE_TOL).
+ *     growing mode at all (every Re sqrt(λ) ≤ RATE_TOL);
+ *   - sph_stability_modes() on a matrix with known modes: J = [[0, 1], [4, 0]] has λ = ±2 with
+ *     eigenvectors (1, ±2)/√5, growth rates √2 and 0, and the same eigenvalues as
+ *     sph_stability_rates().
  */
 #include <math.h>
 #include <stdio.h>
@@ -145,8 +148,25 @@ static void test_lid_box_under_gravity_is_stable(void **state) {
   fixture_solver_destroy(sv);
 }
 
+static void test_modes_of_a_known_matrix(void **state) {
+  (void)state;
+  double J[4] = {0.0, 1.0, 4.0, 0.0}, J2[4] = {0.0, 1.0, 4.0, 0.0};
+  double re[2], im[2], rate[2], amp[4], re2[2], im2[2], rate2[2];
+  assert_int_equal(sph_stability_modes(2, J, re, im, rate, amp), 0);
+  assert_int_equal(sph_stability_rates(2, J2, re2, im2, rate2), 0);
+  for (int j = 0; j < 2; j++) {
+    assert_true(fabs(fabs(re[j]) - 2.0) < 1e-12 && im[j] == 0.0);
+    assert_true(fabs(rate[j] - (re[j] > 0 ? sqrt(2.0) : 0.0)) < 1e-12);
+    assert_true(fabs(amp[0 * 2 + j] - 1.0 / sqrt(5.0)) < 1e-12);
+    assert_true(fabs(amp[1 * 2 + j] - 2.0 / sqrt(5.0)) < 1e-12);
+    assert_true(fabs(re2[j] - re[j]) < 1e-12 && fabs(rate2[j] - rate[j]) < 1e-12);
+  }
+  assert_int_equal(sph_stability_modes(0, J, re, im, rate, amp), 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_modes_of_a_known_matrix),
       cmocka_unit_test(test_acoustic_mode_of_a_closed_box),
       cmocka_unit_test(test_closed_box_has_no_static_instability),
       cmocka_unit_test(test_lid_box_under_gravity_is_stable),

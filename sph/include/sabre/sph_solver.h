@@ -440,6 +440,14 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J);
  * unset).
  */
 int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate);
+/**
+ * sph_stability_rates() and, when amp is not NULL, the eigenvectors too (GSL gsl_eigen_nonsymmv,
+ * each normalised to unit Euclidean norm): amp[i·n + j] = |i-th component of the j-th mode|
+ * (caller-owned, n × n; the modes in the order of lambda_re). Costs about three times the
+ * eigenvalues alone. Returns 0, or −1 if the QR iteration did not converge (outputs unset).
+ */
+int sph_stability_modes(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate,
+                        double *amp);
 
 /** Global diagnostics, one row of diagnostics.csv. */
 struct sph_diagnostics {
@@ -517,6 +525,16 @@ int sph_config_check_probes(const struct sph_config *cfg, struct cmn_case *c,
 
 /** `sabre-sph run CASE.yaml [--set k=v]... [--output DIR] [--restart FILE] [--threads N]`. */
 int sph_cmd_run(int argc, char **argv);
+/**
+ * `sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N] [--eps E]
+ * [--max-unknowns N] [--threads N]` (sph/src/solver/stability_cmd.c): builds the solver as `run`
+ * does (repacking included), forms J with sph_solver_jacobian() and its modes with
+ * sph_stability_modes(), prints a summary and the N fastest-growing modes on stdout and writes
+ * every mode into DIR/stability.csv (columns in --help). Returns 0, CMN_EXIT_FAILURE if the
+ * eigensolver fails; bad input (open boundaries, more unknowns than --max-unknowns, bad options)
+ * exits with CMN_EXIT_INPUT.
+ */
+int sph_cmd_stability(int argc, char **argv);
 
 #ifdef __cplusplus
 }

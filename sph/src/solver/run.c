@@ -242,15 +242,74 @@ static void segment_sources(const struct sph_geometry *g, struct cmn_case *c, in
 }
 
 /*
+ * The solver of a case as `run` and `stability` start it (cli.h).
+ */
+struct sph_solver *sph_cli_solver(struct cmn_case *c, const char *case_path, const char *dir,
+                                  const struct sph_cli_setup *setup) {
+  struct sph_geometry g;
+  sph_geometry_read(&g, c);
+  struct sph_config cfg;
+  sph_config_read(&cfg, c, g.dim);
+  sph_open_check_mesh(&cfg.open, c, &g.walls); /* every open element in exactly one group */
+  cmn_case_check_unused(c);
+
+  struct sph_system s;
+  cmn_message("building the particles...");
+  sph_system_from_geometry(&s, &g);
+  if (s.part[SPH_KIND_FLUID].n == 0)
+    cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
+  sph_config_check_initial(&cfg, c, &s);
+  sph_config_check_probes(&cfg, c, &s);
+  if (setup->closed_only && cfg.open.ngroups > 0)
+    cmn_input_error(
+        "%s: open_boundaries: %s is for closed domains (the open boundaries' Riemann solves "
+        "and particle creation are not linearised); remove the section or close the domain",
+        case_path, setup->command);
+  const size_t unknowns = s.part[SPH_KIND_FLUID].n * (size_t)s.dim;
+  if (setup->max_unknowns > 0 && unknowns > (size_t)setup->max_unknowns)
+    cmn_input_error(
+        "%s: %zu fluid particles x %d = %zu unknowns, more than the %ld of %s "
+        "(--max-unknowns): coarsen geometry.dr or raise the limit",
+        case_path, s.part[SPH_KIND_FLUID].n, s.dim, unknowns, setup->max_unknowns, setup->command);
+  cmn_cli_write_used(c, dir);
+  int *seg_wall;
+  long *seg_edge;
+  segment_sources(&g, c, &seg_wall, &seg_edge);
+  struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
+  if (!setup->repack) cfg.repack_steps = 0;
+  sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
+  if (cfg.repack_steps > 0)
+    cmn_message(
+        "repacking: %ld steps, %zu particles held at the free surface, largest defect "
+        "|sum V_b grad w_ab - grad gamma_a| h %.3g -> %.3g",
+        cfg.repack_steps, sv->repack_fixed, sv->repack_residual[0], sv->repack_residual[1]);
+  free(seg_wall);
+  free(seg_edge);
+  sph_system_free(&s);
+  sph_geometry_free(&g);
+
+  if (sv->sys.part[SPH_KIND_VERTEX].n > 0 && cfg.vertex_volume == SPH_VVOL_FITTED &&
+      sv->vertex_phi < 0.25)
+    cmn_warning(
+        "%s: the fitted wall layer is %.2f dr thick: the first fluid row is about dr/2 "
+        "from the walls, where walls attract the fluid (docs/sph-solver.md section 7); "
+        "set geometry.first_row: 1 (or move the fluid regions dr/2 away from the walls) so "
+        "that it is dr",
+        case_path, sv->vertex_phi);
+  return sv;
+}
+
+/*
  * Thread count: --threads N, else OMP_NUM_THREADS when the user set it, else 1. Not the OpenMP
  * default (one per core): OpenMP threads spin while they wait, and on a machine whose cores are
  * busy with other jobs a team as large as the machine runs many times slower than one thread
  * (the wedge dam break of cases/sph: 162 s against 1.3 s). Returns the count used.
  */
-static int choose_threads(const char *threads_arg) {
+int sph_cli_threads(const char *threads_arg, const char *command) {
   long threads = 0;
   if (threads_arg && cmn_parse_long(threads_arg, 1, 4096, &threads) != 0)
-    cmn_input_error("run: --threads: expected a whole number in [1, 4096], got '%s'", threads_arg);
+    cmn_input_error("%s: --threads: expected a whole number in [1, 4096], got '%s'", command,
+                    threads_arg);
 #ifdef _OPENMP
   const char *env = getenv("OMP_NUM_THREADS");
   if (threads == 0 && env != NULL && env[0] != '\0') return omp_get_max_threads();
@@ -272,51 +331,15 @@ int sph_cmd_run(int argc, char **argv) {
   if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-output", options, 2))
     return cmn_stdout_status(0);
   const char *case_path = cli.case_path, *output = cli.output;
-  const int threads = choose_threads(threads_arg);
+  const int threads = sph_cli_threads(threads_arg, "run");
   const double wall0 = cmn_wall_time();
 
   char err[2048];
   struct cmn_case *c = cmn_cli_load(&cli);
-  struct sph_geometry g;
-  sph_geometry_read(&g, c);
-  struct sph_config cfg;
-  sph_config_read(&cfg, c, g.dim);
-  sph_open_check_mesh(&cfg.open, c, &g.walls); /* every open element in exactly one group */
-  cmn_case_check_unused(c);
-
-  struct sph_system s;
-  cmn_message("building the particles...");
-  sph_system_from_geometry(&s, &g);
-  if (s.part[SPH_KIND_FLUID].n == 0)
-    cmn_input_error("%s: geometry.fluid: no fluid particles", case_path);
-  sph_config_check_initial(&cfg, c, &s);
-  sph_config_check_probes(&cfg, c, &s);
-  /* the run directory only once the input is known good: no half-written output on bad input */
-  cmn_cli_write_used(c, output);
-  int *seg_wall;
-  long *seg_edge;
-  segment_sources(&g, c, &seg_wall, &seg_edge);
-  struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  if (restart) cfg.repack_steps = 0; /* the checkpoint has the positions */
-  sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
-  if (cfg.repack_steps > 0)
-    cmn_message(
-        "repacking: %ld steps, %zu particles held at the free surface, largest defect "
-        "|sum V_b grad w_ab - grad gamma_a| h %.3g -> %.3g",
-        cfg.repack_steps, sv->repack_fixed, sv->repack_residual[0], sv->repack_residual[1]);
-  free(seg_wall);
-  free(seg_edge);
-  sph_system_free(&s);
-  sph_geometry_free(&g);
-
-  if (sv->sys.part[SPH_KIND_VERTEX].n > 0 && cfg.vertex_volume == SPH_VVOL_FITTED &&
-      sv->vertex_phi < 0.25)
-    cmn_warning(
-        "%s: the fitted wall layer is %.2f dr thick: the first fluid row is about dr/2 "
-        "from the walls, where walls attract the fluid (docs/sph-solver.md section 7); "
-        "set geometry.first_row: 1 (or move the fluid regions dr/2 away from the walls) so "
-        "that it is dr",
-        case_path, sv->vertex_phi);
+  /* the checkpoint has the positions: no repacking on restart */
+  const struct sph_cli_setup setup = {"run", restart == NULL, 0, 0};
+  struct sph_solver *sv = sph_cli_solver(c, case_path, output, &setup);
+  const struct sph_config cfg = sv->cfg; /* read only: owned by the solver */
   struct sph_run_counters rc = {0.0, 0, NULL, 0, {{0}}, {0}};
   sph_run_counters_digest(&rc, c);
   {

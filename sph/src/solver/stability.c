@@ -89,13 +89,17 @@ void sph_solver_jacobian(struct sph_solver *sv, double eps, double *J) {
   for (int c = 0; c < dim; c++) free(ref.x0[c]);
 }
 
-int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate) {
+int sph_stability_modes(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate,
+                        double *amp) {
   if (n == 0) return 0;
   gsl_matrix_view m = gsl_matrix_view_array(J, n, n);
   gsl_vector_complex *ev = gsl_vector_complex_alloc(n);
-  gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(n);
+  gsl_matrix_complex *vec = amp ? gsl_matrix_complex_alloc(n, n) : NULL;
+  gsl_eigen_nonsymm_workspace *ws = amp ? NULL : gsl_eigen_nonsymm_alloc(n);
+  gsl_eigen_nonsymmv_workspace *wv = amp ? gsl_eigen_nonsymmv_alloc(n) : NULL;
   gsl_error_handler_t *old = gsl_set_error_handler_off();
-  const int status = gsl_eigen_nonsymm(&m.matrix, ev, ws);
+  const int status =
+      amp ? gsl_eigen_nonsymmv(&m.matrix, ev, vec, wv) : gsl_eigen_nonsymm(&m.matrix, ev, ws);
   gsl_set_error_handler(old);
   if (status == GSL_SUCCESS) {
     for (size_t i = 0; i < n; i++) {
@@ -104,8 +108,18 @@ int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_i
       lambda_im[i] = GSL_IMAG(l);
       rate[i] = GSL_REAL(gsl_complex_sqrt(l));
     }
+    if (amp)
+      for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < n; j++)
+          amp[i * n + j] = gsl_complex_abs(gsl_matrix_complex_get(vec, i, j));
   }
-  gsl_eigen_nonsymm_free(ws);
+  if (ws) gsl_eigen_nonsymm_free(ws);
+  if (wv) gsl_eigen_nonsymmv_free(wv);
+  if (vec) gsl_matrix_complex_free(vec);
   gsl_vector_complex_free(ev);
   return status == GSL_SUCCESS ? 0 : -1;
+}
+
+int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate) {
+  return sph_stability_modes(n, J, lambda_re, lambda_im, rate, NULL);
 }

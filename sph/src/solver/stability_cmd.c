@@ -1,10 +1,10 @@
 /*
  * `sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N] [--eps E]
- * [--max-unknowns N] [--threads N]`: the linearised dynamics of a case's fluid about its start
- * (docs/sph-solver.md §7.1, "The free surface's static states are linearly unstable"). The solver
- * is built as `run` builds it (repacking included), J = ∂a/∂x by sph_solver_jacobian(), and the
- * modes of ẍ = J x by sph_stability_modes(). Prints a summary and the fastest-growing modes on
- * stdout and writes every mode into DIR/stability.csv.
+ * [--min-rate R] [--max-unknowns N] [--threads N]`: the linearised dynamics of a case's fluid about
+ * its start (docs/sph-solver.md §7.1, "The free surface's static states are linearly unstable").
+ * The solver is built as `run` builds it (repacking included), J = ∂a/∂x by sph_solver_jacobian(),
+ * and the modes of ẍ = J x by sph_stability_modes(). Prints a summary and the fastest-growing modes
+ * on stdout and writes every mode into DIR/stability.csv.
  */
 #include <math.h>
 #include <stdio.h>
@@ -16,7 +16,7 @@
 
 static const char usage[] =
     "usage: sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N]\n"
-    "                           [--eps E] [--max-unknowns N] [--threads N]\n"
+    "                           [--eps E] [--min-rate R] [--max-unknowns N] [--threads N]\n"
     "The linearised dynamics of a closed case's fluid about its start (after the case's\n"
     "repacking): J = da/dx by central differences of the solver's accelerations, each density\n"
     "following the time summation, and the modes of x'' = J x from J's eigenvalues lambda and\n"
@@ -27,6 +27,9 @@ static const char usage[] =
     "  --set key=value    override a key of the case file (repeatable)\n"
     "  --modes N          modes printed on stdout (default 10; 0: the summary only)\n"
     "  --eps E            displacement of the central differences in units of dr (default 1e-7)\n"
+    "  --min-rate R       growth rate [1/s] below which the summary does not count a mode\n"
+    "                     (default 1e-3: the round-off of J splits degenerate and neutral\n"
+    "                     eigenvalues into rates of order 1e-8 1/s); the file lists every mode\n"
     "  --max-unknowns N   refuse cases with more than N unknowns, dim x fluid particles\n"
     "                     (default 6000: J and the eigenvectors take 16 N^2 bytes, and the\n"
     "                     eigenproblem grows as N^3, about 10 minutes at 6000)\n"
@@ -81,21 +84,25 @@ static void locate(struct mode *md, const double *amp, size_t n, size_t j, int d
 }
 
 int sph_cmd_stability(int argc, char **argv) {
-  const char *modes_arg = NULL, *eps_arg = NULL, *max_arg = NULL, *threads_arg = NULL;
+  const char *modes_arg = NULL, *eps_arg = NULL, *max_arg = NULL, *threads_arg = NULL,
+             *min_rate_arg = NULL;
   const struct cmn_cli_option options[] = {{"--modes", &modes_arg, 0},
                                            {"--eps", &eps_arg, 0},
                                            {"--max-unknowns", &max_arg, 0},
+                                           {"--min-rate", &min_rate_arg, 0},
                                            {"--threads", &threads_arg, 0}};
   struct cmn_cli cli;
-  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-stability", options, 4))
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-stability", options, 5))
     return cmn_stdout_status(0);
   long nprint = 10, max_unknowns = 6000;
-  double eps_dr = 1e-7;
+  double eps_dr = 1e-7, min_rate = 1e-3;
   if (modes_arg && cmn_parse_long(modes_arg, 0, 1000000000L, &nprint) != 0)
     cmn_input_error("stability: --modes: expected a whole number >= 0, got '%s'", modes_arg);
   if (eps_arg && (cmn_parse_double(eps_arg, &eps_dr) != 0 || !(eps_dr > 0.0) || eps_dr > 1e-2))
     cmn_input_error("stability: --eps: expected a number in (0, 0.01] (units of dr), got '%s'",
                     eps_arg);
+  if (min_rate_arg && (cmn_parse_double(min_rate_arg, &min_rate) != 0 || !(min_rate >= 0.0)))
+    cmn_input_error("stability: --min-rate: expected a number >= 0 (1/s), got '%s'", min_rate_arg);
   if (max_arg && cmn_parse_long(max_arg, 1, 1000000L, &max_unknowns) != 0)
     cmn_input_error("stability: --max-unknowns: expected a whole number in [1, 1000000], got '%s'",
                     max_arg);
@@ -138,11 +145,14 @@ int sph_cmd_stability(int argc, char **argv) {
       locate(&md[j], amp, n, j, dim);
     }
     qsort(md, n, sizeof *md, by_rate);
+    /* modes growing slower than min_rate are not counted: the round-off of J splits degenerate
+     * and neutral eigenvalues (symmetric lattices, periodic translations) into rates of order
+     * 1e-8 1/s */
     size_t nstatic = 0, nflutter = 0;
     double lmax = -INFINITY, fmax = 0.0;
     for (size_t j = 0; j < n; j++) {
-      if (md[j].im == 0.0 && md[j].re > 0.0) nstatic++;
-      if (md[j].im != 0.0 && md[j].rate > 0.0) {
+      if (md[j].im == 0.0 && md[j].rate > min_rate) nstatic++;
+      if (md[j].im != 0.0 && md[j].rate > min_rate) {
         nflutter++;
         fmax = fmax > md[j].rate ? fmax : md[j].rate;
       }
@@ -152,9 +162,12 @@ int sph_cmd_stability(int argc, char **argv) {
     printf("case: %s\nunknowns: %zu (%zu fluid particles x %d), eps = %.3g m\n", case_path, n, np,
            dim, eps);
     printf("asymmetry of J: |J - J^T| / |J + J^T| = %.3g\n", sqrt(asym / (sym > 0 ? sym : 1)));
-    printf("static instabilities (real lambda > 0): %zu", nstatic);
+    printf("static instabilities (real lambda > 0, growth above %g 1/s): %zu", min_rate, nstatic);
     if (nstatic > 0) printf(", largest lambda %.4g 1/s^2 (growth %.4g 1/s)", lmax, sqrt(lmax));
-    printf("\ngrowing oscillations (complex lambda, conjugates counted apart): %zu", nflutter);
+    printf(
+        "\ngrowing oscillations (complex lambda, growth above %g 1/s, conjugates counted apart): "
+        "%zu",
+        min_rate, nflutter);
     if (nflutter > 0) printf(", fastest %.4g 1/s", fmax);
     printf("\nlargest growth rate: %.4g 1/s", md[0].rate);
     if (md[0].rate > 0.0) printf(" (e-folding time %.4g s)", 1.0 / md[0].rate);

@@ -155,6 +155,14 @@ YAML
 run 0 60 "$tool" stability "$tmp/lid.yaml" --output "$tmp/st2" --modes 0
 has '^static instabilities (real lambda > 0, growth above 0.001 1/s): 0$' out
 has '^largest growth rate: 0\.0[0-4]' out # as tests/sph/test_linear_stability.c (0.012 1/s)
+# about a run's state: the checkpoint of the first run above (t = 0.01 s)
+run 0 60 "$tool" stability "$tmp/case.yaml" --output "$tmp/stf" --modes 0 --from "$tmp/d/checkpoint.bin"
+has '^state at t = 0.01 s (step [1-9][0-9]*): largest speed' out
+run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/stg" --from "$tmp/d/checkpoint.bin" \
+  --set fluid.c0=20
+has 'stability: --from: .*differs' err
+run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/sth" --from "$tmp/nothing.bin"
+has 'stability: --from: .*nothing.bin: cannot open' err
 cp "$src/cases/sph/open_channel_2d/case.yaml" "$tmp/open.yaml"
 run 2 20 "$tool" stability "$tmp/open.yaml" --output "$tmp/st3"
 has 'open_boundaries: stability is for closed domains' err

@@ -1,10 +1,10 @@
 /*
  * `sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N] [--eps E]
- * [--min-rate R] [--max-unknowns N] [--threads N]`: the linearised dynamics of a case's fluid about
- * its start (docs/sph-solver.md §7.1, "The free surface's static states are linearly unstable").
- * The solver is built as `run` builds it (repacking included), J = ∂a/∂x by sph_solver_jacobian(),
- * and the modes of ẍ = J x by sph_stability_modes(). Prints a summary and the fastest-growing modes
- * on stdout and writes every mode into DIR/stability.csv.
+ * [--min-rate R] [--max-unknowns N] [--from FILE] [--threads N]`: the linearised dynamics of a
+ * case's fluid about its start (docs/sph-solver.md §7.1, "The free surface's static states are
+ * linearly unstable"). The solver is built as `run` builds it (repacking included), J = ∂a/∂x by
+ * sph_solver_jacobian(), and the modes of ẍ = J x by sph_stability_modes(). Prints a summary and
+ * the fastest-growing modes on stdout and writes every mode into DIR/stability.csv.
  */
 #include <math.h>
 #include <stdio.h>
@@ -16,7 +16,8 @@
 
 static const char usage[] =
     "usage: sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N]\n"
-    "                           [--eps E] [--min-rate R] [--max-unknowns N] [--threads N]\n"
+    "                           [--eps E] [--min-rate R] [--max-unknowns N] [--from FILE]\n"
+    "                           [--threads N]\n"
     "The linearised dynamics of a closed case's fluid about its start (after the case's\n"
     "repacking): J = da/dx by central differences of the solver's accelerations, each density\n"
     "following the time summation, and the modes of x'' = J x from J's eigenvalues lambda and\n"
@@ -33,6 +34,9 @@ static const char usage[] =
     "  --max-unknowns N   refuse cases with more than N unknowns, dim x fluid particles\n"
     "                     (default 6000: J and the eigenvectors take 16 N^2 bytes, and the\n"
     "                     eigenproblem grows as N^3, about 10 minutes at 6000)\n"
+    "  --from FILE        linearise about the state of a checkpoint of this case (written by\n"
+    "                     run: positions, densities, velocities) instead of the start; the\n"
+    "                     velocities are kept, so the analysis means most for a state near rest\n"
     "  --threads N        OpenMP threads for the force evaluations (as for run)\n"
     "Closed domains only: a case with open boundaries is refused. Cost: 2 x unknowns force\n"
     "evaluations and one eigenproblem; 1176 unknowns (the 3D still-water tank) take about 1.5\n"
@@ -85,14 +89,12 @@ static void locate(struct mode *md, const double *amp, size_t n, size_t j, int d
 
 int sph_cmd_stability(int argc, char **argv) {
   const char *modes_arg = NULL, *eps_arg = NULL, *max_arg = NULL, *threads_arg = NULL,
-             *min_rate_arg = NULL;
-  const struct cmn_cli_option options[] = {{"--modes", &modes_arg, 0},
-                                           {"--eps", &eps_arg, 0},
-                                           {"--max-unknowns", &max_arg, 0},
-                                           {"--min-rate", &min_rate_arg, 0},
-                                           {"--threads", &threads_arg, 0}};
+             *min_rate_arg = NULL, *from = NULL;
+  const struct cmn_cli_option options[] = {
+      {"--modes", &modes_arg, 0},       {"--eps", &eps_arg, 0}, {"--max-unknowns", &max_arg, 0},
+      {"--min-rate", &min_rate_arg, 0}, {"--from", &from, 0},   {"--threads", &threads_arg, 0}};
   struct cmn_cli cli;
-  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-stability", options, 5))
+  if (cmn_cli_parse(&cli, argc, argv, argv[0], usage, "sph-stability", options, 6))
     return cmn_stdout_status(0);
   long nprint = 10, max_unknowns = 6000;
   double eps_dr = 1e-7, min_rate = 1e-3;
@@ -111,12 +113,34 @@ int sph_cmd_stability(int argc, char **argv) {
 
   struct cmn_case *c = cmn_cli_load(&cli);
   const char *case_path = cli.case_path, *output = cli.output;
-  const struct sph_cli_setup setup = {"stability", 1, 1, max_unknowns};
+  /* from a checkpoint: its positions, densities and velocities, no repacking */
+  const struct sph_cli_setup setup = {"stability", from == NULL, 1, max_unknowns};
   struct sph_solver *sv = sph_cli_solver(c, case_path, output, &setup);
+  if (from) {
+    char err[2048];
+    struct sph_run_counters rc = {0.0, 0, NULL, 0, {{0}}, {0}};
+    sph_run_counters_digest(&rc, c);
+    if (sph_checkpoint_read(sv, &rc, from, err, sizeof err) != 0)
+      cmn_input_error("stability: --from: %s", err);
+    free(rc.output_times);
+  }
+  sph_solver_evaluate(sv); /* the accelerations of the state analysed */
   const int dim = sv->sys.dim;
   const size_t np = sv->sys.part[SPH_KIND_FLUID].n, n = np * (size_t)dim;
   int status = 0;
   const double eps = eps_dr * sv->sys.dr;
+  double vmax0 = 0.0, amax0 = 0.0; /* how far the state is from rest: speeds and residual forces */
+  for (size_t a = 0; a < np; a++) {
+    double v2 = 0.0, a2 = 0.0;
+    for (int c2 = 0; c2 < dim; c2++) {
+      const double v = sv->sys.part[SPH_KIND_FLUID].v[c2][a];
+      const double r = sv->acc[c2][a];
+      v2 += v * v;
+      a2 += r * r;
+    }
+    vmax0 = fmax(vmax0, sqrt(v2));
+    amax0 = fmax(amax0, sqrt(a2));
+  }
   cmn_message(
       "%dD: %zu fluid particles, %zu unknowns; %zu force evaluations (eps = %.3g m); %d "
       "thread%s",
@@ -159,8 +183,11 @@ int sph_cmd_stability(int argc, char **argv) {
       if (md[j].im == 0.0 && md[j].re > lmax) lmax = md[j].re;
     }
     const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
-    printf("case: %s\nunknowns: %zu (%zu fluid particles x %d), eps = %.3g m\n", case_path, n, np,
-           dim, eps);
+    printf("case: %s\n", case_path);
+    if (from) printf("state: %s\n", from);
+    printf("state at t = %.6g s (step %ld): largest speed %.4g m/s, largest |a| %.4g m/s^2\n",
+           sv->time, sv->step, vmax0, amax0);
+    printf("unknowns: %zu (%zu fluid particles x %d), eps = %.3g m\n", n, np, dim, eps);
     printf("asymmetry of J: |J - J^T| / |J + J^T| = %.3g\n", sqrt(asym / (sym > 0 ? sym : 1)));
     printf("static instabilities (real lambda > 0, growth above %g 1/s): %zu", min_rate, nstatic);
     if (nstatic > 0) printf(", largest lambda %.4g 1/s^2 (growth %.4g 1/s)", lmax, sqrt(lmax));

@@ -167,6 +167,11 @@ cp "$src/cases/sph/open_channel_2d/case.yaml" "$tmp/open.yaml"
 run 2 20 "$tool" stability "$tmp/open.yaml" --output "$tmp/st3"
 has 'open_boundaries: stability is for closed domains' err
 [ -e "$tmp/st3" ] && bad "a stability directory was created for a refused case" || ok
+# repack.settle: the set-up's settling run, summarised; refused with open boundaries
+run 0 60 "$tool" run "$tmp/case.yaml" --output "$tmp/sett" --set repack.settle=0.02
+has "settling: 0.02 s of the case's dynamics in [1-9][0-9]* steps" err
+run 2 20 "$tool" run "$tmp/open.yaml" --output "$tmp/sett2" --set repack.settle=0.1
+has 'repack.settle: a settling run is for closed domains at rest: not with open_boundaries' err
 run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/st4" --max-unknowns 100
 has '128 unknowns, more than the 100 of stability' err
 run 2 10 "$tool" stability "$tmp/case.yaml" --output "$tmp/st5" --modes -1

@@ -36,6 +36,7 @@ static void test_defaults(void **state) {
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
+  assert_true(cfg.settle == 0.0);
   assert_int_equal(
       read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
                 "probes: {pressure: [[0.5, 0.5]], gauges: [[0.2, 0], [0.8, 0]]}\n",
@@ -62,6 +63,7 @@ static void test_errors(void **state) {
   expect("numerics: {gradient_k: 3}\n", "numerics.gradient_k", "");
   expect("numerics: {artificial_viscosity: -0.01}\n", "numerics.artificial_viscosity", "");
   expect("repack: {steps: 100, perturbation: 0.3}\n", "repack.perturbation", "");
+  expect("repack: {settle: -1}\n", "repack.settle", "");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
@@ -74,6 +76,46 @@ static void test_errors(void **state) {
   expect("--set fluid.xi=0.5", "fluid.xi", "");
   expect("--set fluid.c0=fast", "fluid.c0", "fast");
   expect("--set numerics.cfl=2", "numerics.cfl", "(0, 1]");
+}
+
+/* repack.settle: the case's own dynamics before t = 0, then the velocities zeroed and the clock at
+ * 0: a 2D box of water with a free surface (a start that moves) */
+#define SETTLE_CASE                                          \
+  "geometry:\n"                                              \
+  "  dimension: 2\n"                                         \
+  "  dr: 0.025\n"                                            \
+  "  h_over_dr: 2\n"                                         \
+  "  first_row: 1\n"                                         \
+  "  walls: [{type: box, lo: [0, 0], hi: [0.3, 0.3]}]\n"     \
+  "  fluid: [{type: box, lo: [0, 0], hi: [0.3, 0.2]}]\n"     \
+  "fluid: {rho0: 1000, c0: 20}\n"                            \
+  "gravity: [0, -9.81]\n"                                    \
+  "initial: {pressure: hydrostatic, free_surface: 0.2125}\n" \
+  "time: {end: 1}\n"                                         \
+  "%s"
+
+static void test_settle(void **state) {
+  (void)state;
+  char text[2048];
+  snprintf(text, sizeof text, SETTLE_CASE, "");
+  struct sph_solver *s0 = fixture_solver_from_case(text);
+  snprintf(text, sizeof text, SETTLE_CASE, "repack: {settle: 0.05}\n");
+  struct sph_solver *s1 = fixture_solver_from_case(text);
+  const struct sph_parts *f0 = &s0->sys.part[SPH_KIND_FLUID], *f1 = &s1->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f0->n, f1->n);
+  assert_true(s0->settle_steps == 0 && s1->settle_steps > 10);
+  assert_true(s1->time == 0.0 && s1->step == 0 && s1->settle_speed > 0.0);
+  double moved = 0.0, vmax = 0.0;
+  for (size_t a = 0; a < f1->n; a++)
+    for (int c = 0; c < 2; c++) {
+      moved = fmax(moved, fabs(f1->x[c][a] - f0->x[c][a]));
+      vmax = fmax(vmax, fabs(f1->v[c][a]));
+    }
+  print_message("settled 0.05 s in %ld steps: largest displacement %.3g m, speed %.3g m/s\n",
+                s1->settle_steps, moved, s1->settle_speed);
+  assert_true(moved > 1e-6 && vmax == 0.0);
+  fixture_solver_destroy(s0);
+  fixture_solver_destroy(s1);
 }
 
 static void test_missing(void **state) {
@@ -93,6 +135,7 @@ int main(void) {
       cmocka_unit_test(test_defaults),
       cmocka_unit_test(test_errors),
       cmocka_unit_test(test_missing),
+      cmocka_unit_test(test_settle),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

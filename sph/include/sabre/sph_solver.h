@@ -229,6 +229,10 @@ struct sph_config {
   /** largest random displacement of the repacking's start, per coordinate, of the particles it
    *  moves [Δr] (repack.perturbation; 0: the lattice as it is) */
   double repack_perturbation;
+  /** simulated time of the settling run after the repacking [s] (repack.settle; 0: none): the
+   *  case's own dynamics from the initial state, then every velocity set to zero and the clock
+   *  to t = 0 (docs/sph-solver.md §8) */
+  double settle;
   double cfl, viscous_factor, force_factor, gamma_factor;
   double skin_over_h; /**< neighbour-list skin / h */
   int list_rebuild;   /**< enum sph_list_rebuild */
@@ -318,6 +322,9 @@ struct sph_solver {
   double repack_residual[2];  /**< largest defect × h at the start (after the perturbation) and at
                                *   the end of the repacking [-] */
   size_t repack_fixed;        /**< fluid particles held by the repacking's lid */
+  long settle_steps;          /**< steps of the settling run (repack.settle; 0: none) */
+  double settle_speed;        /**< largest fluid speed at the end of the settling run, before
+                               *   the velocities are set to zero [m/s] */
   double timing[SPH_NPHASES]; /**< wall seconds spent in each phase since set-up (the set-up's
                                    own evaluations included; zero it to time a run of steps) */
   int *vert_bc; /**< per vertex: −1 the default vertex_bc, else a vertex_groups index */

@@ -304,6 +304,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_double(c, "numerics.vertex_layer", 0.5, 0.0, 1.0, &cfg->vertex_layer));
   TRY(cmn_case_opt_long(c, "repack.steps", 0, 0, 10000000L, &cfg->repack_steps));
   TRY(cmn_case_opt_double(c, "repack.perturbation", 0.0, 0.0, 0.25, &cfg->repack_perturbation));
+  TRY(cmn_case_opt_double(c, "repack.settle", 0.0, 0.0, 1e4, &cfg->settle));
   TRY(opt_fraction(c, "numerics.cfl", 0.3, &cfg->cfl));
   TRY(opt_fraction(c, "numerics.viscous_factor", 0.125, &cfg->viscous_factor));
   TRY(opt_fraction(c, "numerics.force_factor", 0.25, &cfg->force_factor));
@@ -346,6 +347,13 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   if (rmn_eos_init(&eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS)
     return cmn_case_fail(c, "fluid", "invalid equation of state");
   TRY(sph_open_config_read(&cfg->open, c, dim, cfg->gravity, &eos));
+  /* a settling run before t = 0 is for closed still-water set-ups: open boundaries would create and
+   * delete particles and the imposed flux would drive a flow before the start */
+  if (cfg->settle > 0.0 && (cfg->open.ngroups > 0 || cfg->flux_method != SPH_FLUXSEL_OFF))
+    return cmn_case_fail(c, "repack.settle",
+                         "a settling run is for closed domains at rest: not with %s; remove the "
+                         "key or set it to 0",
+                         cfg->open.ngroups > 0 ? "open_boundaries" : "imposed_flux");
   if (cfg->initial_wave)
     TRY(sph_open_wave_read(c, "initial.wave", dim, cfg->gravity, &eos, &cfg->wave));
   return 0;

@@ -276,13 +276,21 @@ struct sph_solver *sph_cli_solver(struct cmn_case *c, const char *case_path, con
   long *seg_edge;
   segment_sources(&g, c, &seg_wall, &seg_edge);
   struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
-  if (!setup->repack) cfg.repack_steps = 0;
+  if (!setup->repack) { /* the checkpoint has the positions */
+    cfg.repack_steps = 0;
+    cfg.settle = 0.0;
+  }
   sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
   if (cfg.repack_steps > 0)
     cmn_message(
         "repacking: %ld steps, %zu particles held at the free surface, largest defect "
         "|sum V_b grad w_ab - grad gamma_a| h %.3g -> %.3g",
         cfg.repack_steps, sv->repack_fixed, sv->repack_residual[0], sv->repack_residual[1]);
+  if (cfg.settle > 0.0)
+    cmn_message(
+        "settling: %g s of the case's dynamics in %ld steps, largest speed %.3g m/s at "
+        "its end, set to zero; the run starts at t = 0",
+        cfg.settle, sv->settle_steps, sv->settle_speed);
   free(seg_wall);
   free(seg_edge);
   sph_system_free(&s);

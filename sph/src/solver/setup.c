@@ -180,6 +180,40 @@ static void vertex_masses_set(struct sph_solver *sv) {
   sv->vertex_phi = sv->cfg.vertex_layer;
 }
 
+/*
+ * The settling run (repack.settle): the case's own dynamics from the initial state for cfg.settle
+ * seconds, then every fluid velocity set to zero and the clock back to t = 0, step 0
+ * (docs/sph-solver.md §8). A failed step stops the set-up with the step's message.
+ */
+static void settle(struct sph_solver *sv) {
+  const double t_end = sv->cfg.settle;
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  struct cmn_progress prog;
+  cmn_progress_start(&prog, 0.0, t_end);
+  while (sv->time < t_end * (1.0 - 1e-12)) {
+    char msg[1024];
+    if (sph_solver_step(sv, t_end - sv->time, msg, sizeof msg) != 0)
+      cmn_input_error("repack.settle: the settling run failed: %s", msg);
+    cmn_progress_task(&prog, sv->time, 0, "settling: t = %.4g s of %g s, step %ld", sv->time, t_end,
+                      sv->step);
+  }
+  double vmax = 0.0;
+  for (size_t a = 0; a < f->n; a++) {
+    double v2 = 0.0;
+    for (int c = 0; c < 3; c++) {
+      v2 += f->v[c][a] * f->v[c][a];
+      f->v[c][a] = 0.0;
+    }
+    vmax = fmax(vmax, sqrt(v2));
+  }
+  sv->settle_steps = sv->step;
+  sv->settle_speed = vmax;
+  sv->time = 0.0;
+  sv->step = 0;
+  sv->dt = 0.0;
+  sph_solver_sync(sv);
+}
+
 void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct sph_system *s,
                      const int *seg_wall, const long *seg_edge) {
   memset(sv, 0, sizeof *sv);
@@ -259,6 +293,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_open_mass_base(sv->open, sv); /* the wall masses, final now (docs/sph-solver.md §10) */
 
   sv->evaluated_step = -1;
+  if (cfg->settle > 0.0) settle(sv);
 
   /* Force groups: a segment belongs to the first group naming its wall (and element); a vertex
    * to the group of the first segment using it. */

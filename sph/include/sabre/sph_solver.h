@@ -534,12 +534,13 @@ int sph_config_check_probes(const struct sph_config *cfg, struct cmn_case *c,
 int sph_cmd_run(int argc, char **argv);
 /**
  * `sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N] [--eps E]
- * [--max-unknowns N] [--threads N]` (sph/src/solver/stability_cmd.c): builds the solver as `run`
- * does (repacking included), forms J with sph_solver_jacobian() and its modes with
- * sph_stability_modes(), prints a summary and the N fastest-growing modes on stdout and writes
- * every mode into DIR/stability.csv (columns in --help). Returns 0, CMN_EXIT_FAILURE if the
- * eigensolver fails; bad input (open boundaries, more unknowns than --max-unknowns, bad options)
- * exits with CMN_EXIT_INPUT.
+ * [--min-rate R] [--max-unknowns N] [--from CHECKPOINT] [--threads N]`
+ * (sph/src/solver/stability_cmd.c): builds the solver as `run` does (repacking and settling
+ * included; with --from, the checkpoint's state instead), forms J with sph_solver_jacobian() and
+ * its modes with sph_stability_modes(), prints a summary and the N fastest-growing modes on stdout
+ * and writes every mode into DIR/stability.csv (columns in --help). Returns 0, CMN_EXIT_FAILURE
+ * if the eigensolver fails; bad input (open boundaries, more unknowns than --max-unknowns, a bad
+ * or mismatched checkpoint, bad options) exits with CMN_EXIT_INPUT.
  */
 int sph_cmd_stability(int argc, char **argv);
 

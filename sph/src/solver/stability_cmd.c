@@ -2,9 +2,10 @@
  * `sabre-sph stability CASE.yaml [--set key=value]... [--output DIR] [--modes N] [--eps E]
  * [--min-rate R] [--max-unknowns N] [--from FILE] [--threads N]`: the linearised dynamics of a
  * case's fluid about its start (docs/sph-solver.md §7.1, "The free surface's static states are
- * linearly unstable"). The solver is built as `run` builds it (repacking included), J = ∂a/∂x by
- * sph_solver_jacobian(), and the modes of ẍ = J x by sph_stability_modes(). Prints a summary and
- * the fastest-growing modes on stdout and writes every mode into DIR/stability.csv.
+ * linearly unstable"). The solver is built as `run` builds it (repacking and settling
+ * included), J = ∂a/∂x by sph_solver_jacobian(), and the modes of ẍ = J x by
+ * sph_stability_modes(). Prints a summary and the fastest-growing modes on stdout and writes every
+ * mode into DIR/stability.csv.
  */
 #include <math.h>
 #include <stdio.h>
@@ -19,10 +20,11 @@ static const char usage[] =
     "                           [--eps E] [--min-rate R] [--max-unknowns N] [--from FILE]\n"
     "                           [--threads N]\n"
     "The linearised dynamics of a closed case's fluid about its start (after the case's\n"
-    "repacking): J = da/dx by central differences of the solver's accelerations, each density\n"
-    "following the time summation, and the modes of x'' = J x from J's eigenvalues lambda and\n"
-    "eigenvectors (GSL). A mode grows at the rate Re sqrt(lambda) [1/s]: a real lambda > 0 is a\n"
-    "static instability, a complex lambda an oscillation that grows or decays (flutter).\n"
+    "repacking and settling): J = da/dx by central differences of the solver's\n"
+    "accelerations, each density following the time summation, and the modes of x'' = J x\n"
+    "from J's eigenvalues lambda and eigenvectors (GSL). A mode grows at the rate\n"
+    "Re sqrt(lambda) [1/s]: a real lambda > 0 is a static instability, a complex lambda an\n"
+    "oscillation that grows or decays (flutter).\n"
     "Prints a summary and the N fastest-growing modes on stdout, and writes every mode into\n"
     "DIR/stability.csv (default DIR sph-stability) with DIR/used_case.yaml.\n"
     "  --set key=value    override a key of the case file (repeatable)\n"

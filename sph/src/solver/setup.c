@@ -197,17 +197,12 @@ static void settle(struct sph_solver *sv) {
     cmn_progress_task(&prog, sv->time, 0, "settling: t = %.4g s of %g s, step %ld", sv->time, t_end,
                       sv->step);
   }
-  double vmax = 0.0;
-  for (size_t a = 0; a < f->n; a++) {
-    double v2 = 0.0;
-    for (int c = 0; c < 3; c++) {
-      v2 += f->v[c][a] * f->v[c][a];
-      f->v[c][a] = 0.0;
-    }
-    vmax = fmax(vmax, sqrt(v2));
-  }
+  struct sph_diagnostics d;
+  sph_solver_diagnostics(sv, &d);
   sv->settle_steps = sv->step;
-  sv->settle_speed = vmax;
+  sv->settle_speed = d.max_speed;
+  for (int c = 0; c < 3; c++)
+    for (size_t a = 0; a < f->n; a++) f->v[c][a] = 0.0;
   sv->time = 0.0;
   sv->step = 0;
   sv->dt = 0.0;
@@ -293,7 +288,6 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   sph_open_mass_base(sv->open, sv); /* the wall masses, final now (docs/sph-solver.md §10) */
 
   sv->evaluated_step = -1;
-  if (cfg->settle > 0.0) settle(sv);
 
   /* Force groups: a segment belongs to the first group naming its wall (and element); a vertex
    * to the group of the first segment using it. */
@@ -316,6 +310,8 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
       if (sv->vert_group[iv] < 0) sv->vert_group[iv] = sv->seg_group[j];
     }
   }
+  /* last: the settling run steps a solver that is set up in full */
+  if (cfg->settle > 0.0) settle(sv);
 }
 
 void sph_solver_free(struct sph_solver *sv) {

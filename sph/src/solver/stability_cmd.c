@@ -68,23 +68,19 @@ static int by_rate(const void *pa, const void *pb) {
  * the participation number. */
 static void locate(struct mode *md, const double *amp, size_t n, size_t j, int dim) {
   const size_t np = n / (size_t)dim;
-  double total = 0.0, sum_sq = 0.0, best = -1.0;
+  double total = 0.0, total_sq = 0.0, best = -1.0;
   for (size_t a = 0; a < np; a++) {
     double p = 0.0;
     for (int c = 0; c < dim; c++) p += amp[(a * dim + c) * n + j] * amp[(a * dim + c) * n + j];
     total += p;
+    total_sq += p * p;
     if (p > best) {
       best = p;
       md->particle = a;
     }
   }
-  for (size_t a = 0; a < np; a++) {
-    double p = 0.0;
-    for (int c = 0; c < dim; c++) p += amp[(a * dim + c) * n + j] * amp[(a * dim + c) * n + j];
-    sum_sq += (p / total) * (p / total);
-  }
   md->share = best / total;
-  md->participation = 1.0 / sum_sq;
+  md->participation = total * total / total_sq; /* 1 / Σ (p_a / Σ p)² */
   for (int c = 0; c < 3; c++)
     md->dir[c] = c < dim ? amp[(md->particle * dim + c) * n + j] / sqrt(best) : 0.0;
 }

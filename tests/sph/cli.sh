@@ -172,6 +172,12 @@ run 0 60 "$tool" run "$tmp/case.yaml" --output "$tmp/sett" --set repack.settle=0
 has "settling: 0.02 s of the case's dynamics in [1-9][0-9]* steps" err
 run 2 20 "$tool" run "$tmp/open.yaml" --output "$tmp/sett2" --set repack.settle=0.1
 has 'repack.settle: a settling run is for closed domains at rest: not with open_boundaries' err
+# repack.layer_equilibrium: summarised; refused with open boundaries
+run 0 60 "$tool" run "$tmp/case.yaml" --output "$tmp/lay" --set repack.layer_equilibrium=true
+has 'layer equilibrium: 8 layers moved up by [-+][0-9.]*, .*largest mean vertical acceleration of a layer [0-9.e-]* g' err
+run 2 20 "$tool" run "$tmp/open.yaml" --output "$tmp/lay2" --set repack.layer_equilibrium=true
+has 'repack.layer_equilibrium: the layer equilibrium of water at rest needs no open_boundaries' err
+[ -e "$tmp/lay2" ] && bad "an output directory was created for a refused case" || ok
 run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/st4" --max-unknowns 100
 has '128 unknowns, more than the 100 of stability' err
 run 2 10 "$tool" stability "$tmp/case.yaml" --output "$tmp/st5" --modes -1

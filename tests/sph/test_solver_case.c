@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sabre/common.h"
+#include "sabre/sph_open.h"
 #include "sabre/sph_solver.h"
 #include "solver_fixture.h"
 #include "testutil.h"
@@ -36,7 +37,7 @@ static void test_defaults(void **state) {
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
-  assert_true(cfg.settle == 0.0);
+  assert_true(cfg.settle == 0.0 && cfg.layer_equilibrium == 0);
   assert_int_equal(
       read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
                 "probes: {pressure: [[0.5, 0.5]], gauges: [[0.2, 0], [0.8, 0]]}\n",
@@ -64,6 +65,8 @@ static void test_errors(void **state) {
   expect("numerics: {artificial_viscosity: -0.01}\n", "numerics.artificial_viscosity", "");
   expect("repack: {steps: 100, perturbation: 0.3}\n", "repack.perturbation", "");
   expect("repack: {settle: -1}\n", "repack.settle", "");
+  expect("repack: {layer_equilibrium: yes please}\n", "repack.layer_equilibrium", "");
+  expect("repack: {layer_equilibrium: true}\n", "repack.layer_equilibrium", "non-zero gravity");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
@@ -118,6 +121,66 @@ static void test_settle(void **state) {
   fixture_solver_destroy(s1);
 }
 
+/* Each row's mean vertical acceleration / g of a 2D solver's fluid (rows by y/Δr rounded), after a
+ * fresh evaluation; returns the largest |mean| and the number of rows in *nrow. */
+static double row_means(struct sph_solver *sv, int *nrow) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  double sum[64] = {0.0}, cnt[64] = {0.0}, worst = 0.0;
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  *nrow = 0;
+  for (size_t a = 0; a < f->n; a++) {
+    const long k = lround(f->x[1][a] / sv->sys.dr);
+    assert_true(k >= 0 && k < 64);
+    sum[k] += sv->acc[1][a] / 9.81;
+    cnt[k] += 1.0;
+  }
+  for (int k = 0; k < 64; k++)
+    if (cnt[k] > 0.0) {
+      (*nrow)++;
+      worst = fmax(worst, fabs(sum[k] / cnt[k]));
+    }
+  return worst;
+}
+
+/* repack.layer_equilibrium: the box of test_settle, each of its 8 rows moved as one along the
+ * vertical to where its mean vertical acceleration is zero, densities hydrostatic where they are */
+static void test_layer_equilibrium(void **state) {
+  (void)state;
+  char text[2048];
+  snprintf(text, sizeof text, SETTLE_CASE, "");
+  struct sph_solver *s0 = fixture_solver_from_case(text);
+  snprintf(text, sizeof text, SETTLE_CASE, "repack: {layer_equilibrium: true}\n");
+  struct sph_solver *s1 = fixture_solver_from_case(text);
+  const struct sph_parts *f0 = &s0->sys.part[SPH_KIND_FLUID], *f1 = &s1->sys.part[SPH_KIND_FLUID];
+  assert_int_equal(f0->n, f1->n);
+  assert_int_equal(s0->layer_count, 0);
+  assert_int_equal(s1->layer_count, 8);
+  assert_true(s1->layer_residual <= 1e-9);
+  /* the lattice is not the scheme's equilibrium; the moved rows are */
+  int n0, n1;
+  const double before = row_means(s0, &n0), after = row_means(s1, &n1);
+  print_message(
+      "rows' largest mean vertical acceleration: %.3g g on the lattice, %.3g g after; "
+      "highest rows moved by %+.4f, %+.4f dr\n",
+      before, after, s1->layer_shift[0], s1->layer_shift[1]);
+  assert_int_equal(n0, 8);
+  assert_int_equal(n1, 8);
+  assert_true(before > 1e-3 && after <= 1e-9);
+  /* each row moved as one, vertically, by its shift (the highest first); hydrostatic densities */
+  const double dr = s1->sys.dr;
+  for (size_t a = 0; a < f1->n; a++) {
+    const int k = 8 - (int)lround(f0->x[1][a] / dr);
+    assert_true(fabs(f1->x[0][a] - f0->x[0][a]) <= 1e-15);
+    assert_true(fabs(f1->x[1][a] - f0->x[1][a] - s1->layer_shift[k] * dr) <= 1e-12);
+    const double p = sph_hydrostatic_pressure(&s1->eos, 9.81, 0.2125 - f1->x[1][a]);
+    assert_true(fabs(f1->rho[a] - rmn_eos_density(&s1->eos, p)) <= 1e-9);
+    assert_true(fabs(f1->mass[a] - f1->rho[a] * dr * dr) <= 1e-12);
+  }
+  fixture_solver_destroy(s0);
+  fixture_solver_destroy(s1);
+}
+
 static void test_missing(void **state) {
   (void)state;
   char err[512];
@@ -132,10 +195,9 @@ static void test_missing(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_defaults),
-      cmocka_unit_test(test_errors),
-      cmocka_unit_test(test_missing),
-      cmocka_unit_test(test_settle),
+      cmocka_unit_test(test_defaults),          cmocka_unit_test(test_errors),
+      cmocka_unit_test(test_missing),           cmocka_unit_test(test_settle),
+      cmocka_unit_test(test_layer_equilibrium),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -229,6 +229,10 @@ struct sph_config {
   /** largest random displacement of the repacking's start, per coordinate, of the particles it
    *  moves [Δr] (repack.perturbation; 0: the lattice as it is) */
   double repack_perturbation;
+  /** layer equilibrium after the repacking (repack.layer_equilibrium; 0: off): each horizontal
+   *  layer of the fluid moved vertically to where its mean vertical acceleration is zero
+   *  (docs/sph-solver.md §8) */
+  int layer_equilibrium;
   /** simulated time of the settling run after the repacking [s] (repack.settle; 0: none): the
    *  case's own dynamics from the initial state, then every velocity set to zero and the clock
    *  to t = 0 (docs/sph-solver.md §8) */
@@ -322,6 +326,11 @@ struct sph_solver {
   double repack_residual[2];  /**< largest defect × h at the start (after the perturbation) and at
                                *   the end of the repacking [-] */
   size_t repack_fixed;        /**< fluid particles held by the repacking's lid */
+  int layer_count;            /**< layers of the layer equilibrium (0: none) */
+  double *layer_shift;        /**< each layer's shift upwards [Δr], the highest first (owned;
+                               *   NULL without the layer equilibrium) */
+  double layer_residual;      /**< largest |mean vertical acceleration| / |g| of a layer at the
+                               *   equilibrium found [-] */
   long settle_steps;          /**< steps of the settling run (repack.settle; 0: none) */
   double settle_speed;        /**< largest fluid speed at the end of the settling run, before
                                *   the velocities are set to zero [m/s] */

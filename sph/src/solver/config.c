@@ -304,6 +304,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_double(c, "numerics.vertex_layer", 0.5, 0.0, 1.0, &cfg->vertex_layer));
   TRY(cmn_case_opt_long(c, "repack.steps", 0, 0, 10000000L, &cfg->repack_steps));
   TRY(cmn_case_opt_double(c, "repack.perturbation", 0.0, 0.0, 0.25, &cfg->repack_perturbation));
+  TRY(cmn_case_opt_bool(c, "repack.layer_equilibrium", 0, &cfg->layer_equilibrium));
   TRY(cmn_case_opt_double(c, "repack.settle", 0.0, 0.0, 1e4, &cfg->settle));
   TRY(opt_fraction(c, "numerics.cfl", 0.3, &cfg->cfl));
   TRY(opt_fraction(c, "numerics.viscous_factor", 0.125, &cfg->viscous_factor));
@@ -354,6 +355,21 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                          "a settling run is for closed domains at rest: not with %s; remove the "
                          "key or set it to 0",
                          cfg->open.ngroups > 0 ? "open_boundaries" : "imposed_flux");
+  /* the layer equilibrium balances gravity in a fluid at rest with horizontal layers */
+  if (cfg->layer_equilibrium) {
+    const double g2 = cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
+                      cfg->gravity[2] * cfg->gravity[2];
+    const char *why = !(g2 > 0.0)                           ? "a non-zero gravity"
+                      : cfg->initial_wave                   ? "no initial.wave"
+                      : cfg->open.ngroups > 0               ? "no open_boundaries"
+                      : cfg->flux_method != SPH_FLUXSEL_OFF ? "no imposed_flux"
+                                                            : NULL;
+    if (why)
+      return cmn_case_fail(c, "repack.layer_equilibrium",
+                           "the layer equilibrium of water at rest needs %s; remove the key or set "
+                           "it to false",
+                           why);
+  }
   if (cfg->initial_wave)
     TRY(sph_open_wave_read(c, "initial.wave", dim, cfg->gravity, &eos, &cfg->wave));
   return 0;

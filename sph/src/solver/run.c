@@ -278,6 +278,7 @@ struct sph_solver *sph_cli_solver(struct cmn_case *c, const char *case_path, con
   struct sph_solver *sv = cmn_calloc(1, sizeof *sv);
   if (!setup->repack) { /* the checkpoint has the positions */
     cfg.repack_steps = 0;
+    cfg.layer_equilibrium = 0;
     cfg.settle = 0.0;
   }
   sph_solver_init(sv, &cfg, &s, seg_wall, seg_edge);
@@ -286,6 +287,17 @@ struct sph_solver *sph_cli_solver(struct cmn_case *c, const char *case_path, con
         "repacking: %ld steps, %zu particles held at the free surface, largest defect "
         "|sum V_b grad w_ab - grad gamma_a| h %.3g -> %.3g",
         cfg.repack_steps, sv->repack_fixed, sv->repack_residual[0], sv->repack_residual[1]);
+  if (sv->layer_count > 0) {
+    char shifts[160] = "";
+    size_t len = 0;
+    for (int k = 0; k < sv->layer_count && k < 4 && len < sizeof shifts; k++)
+      len += (size_t)snprintf(shifts + len, sizeof shifts - len, "%s%+.3f", k ? ", " : "",
+                              sv->layer_shift[k]);
+    cmn_message(
+        "layer equilibrium: %d layers moved up by %s%s dr (the highest first), largest mean "
+        "vertical acceleration of a layer %.2g g",
+        sv->layer_count, shifts, sv->layer_count > 4 ? ", ..." : "", sv->layer_residual);
+  }
   if (cfg.settle > 0.0)
     cmn_message(
         "settling: %g s of the case's dynamics in %ld steps, largest speed %.3g m/s at "

@@ -3,7 +3,10 @@
  * profiles of velocity and pressure or density, masses m_a = ρ_a Δr^d), vertex masses, force
  * groups; and the solver's own per-particle arrays.
  */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multiroots.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -181,6 +184,109 @@ static void vertex_masses_set(struct sph_solver *sv) {
 }
 
 /*
+ * The layer equilibrium (repack.layer_equilibrium, docs/sph-solver.md §8): the fluid particles
+ * grouped into horizontal layers by their depth below the highest one, rounded to Δr; each layer
+ * moved along the vertical by one shift s_k (in Δr) so that its mean vertical acceleration is
+ * zero, with the densities and masses of the initial profile at the moved positions. The shifts
+ * are the root of L functions of L unknowns, found by GSL's hybrid solver (Jacobian by finite
+ * differences, one force evaluation per layer).
+ */
+#define SPH_LAYER_TOL 1e-9 /* largest |mean a·up| / |g| of a layer at the root */
+#define SPH_LAYER_ITER 200 /* hybrid iterations at most */
+
+struct layers {
+  struct sph_solver *sv;
+  const struct profile *pr;
+  double *height0; /* each particle's height along up before the shifts [m] */
+  int *layer;      /* each particle's layer, 0 the highest */
+  double *count;   /* particles of each layer */
+  int n;           /* layers */
+};
+
+/* Residual of the shifts u [Δr]: each layer's mean vertical acceleration / |g|. */
+static int layers_residual(const gsl_vector *u, void *params, gsl_vector *out) {
+  struct layers *ly = params;
+  struct sph_solver *sv = ly->sv;
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double *up = ly->pr->up;
+  for (size_t a = 0; a < f->n; a++) {
+    const double height = up[0] * f->x[0][a] + up[1] * f->x[1][a] + up[2] * f->x[2][a];
+    const double move =
+        ly->height0[a] + sv->sys.dr * gsl_vector_get(u, (size_t)ly->layer[a]) - height;
+    for (int c = 0; c < 3; c++) f->x[c][a] += move * up[c];
+  }
+  fluid_density(sv, ly->pr);
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  gsl_vector_set_zero(out);
+  for (size_t a = 0; a < f->n; a++) {
+    const double av = up[0] * sv->acc[0][a] + up[1] * sv->acc[1][a] + up[2] * sv->acc[2][a];
+    const size_t k = (size_t)ly->layer[a];
+    gsl_vector_set(out, k, gsl_vector_get(out, k) + av / (ly->pr->gnorm * ly->count[k]));
+  }
+  for (int k = 0; k < ly->n; k++)
+    if (!isfinite(gsl_vector_get(out, (size_t)k))) return GSL_EBADFUNC;
+  return GSL_SUCCESS;
+}
+
+static void layer_equilibrium(struct sph_solver *sv, const struct profile *pr) {
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double dr = sv->sys.dr;
+  struct layers ly = {
+      sv,   pr, cmn_malloc((f->n + 1) * sizeof(double)), cmn_malloc((f->n + 1) * sizeof(int)),
+      NULL, 0};
+  double top = -INFINITY, bottom = INFINITY;
+  for (size_t a = 0; a < f->n; a++) {
+    ly.height0[a] = pr->up[0] * f->x[0][a] + pr->up[1] * f->x[1][a] + pr->up[2] * f->x[2][a];
+    top = fmax(top, ly.height0[a]);
+    bottom = fmin(bottom, ly.height0[a]);
+  }
+  /* layer numbers by depth; the empty ones (a fluid not filled on a lattice) left out */
+  const size_t span = (size_t)lround((top - bottom) / dr) + 1;
+  int *number = cmn_malloc(span * sizeof *number);
+  for (size_t k = 0; k < span; k++) number[k] = -1;
+  for (size_t a = 0; a < f->n; a++) number[lround((top - ly.height0[a]) / dr)] = 0;
+  for (size_t k = 0; k < span; k++)
+    if (number[k] == 0) number[k] = ly.n++;
+  ly.count = cmn_calloc((size_t)ly.n, sizeof *ly.count);
+  for (size_t a = 0; a < f->n; a++) {
+    ly.layer[a] = number[lround((top - ly.height0[a]) / dr)];
+    ly.count[ly.layer[a]] += 1.0;
+  }
+  free(number);
+
+  gsl_error_handler_t *handler = gsl_set_error_handler_off();
+  gsl_multiroot_function fn = {layers_residual, (size_t)ly.n, &ly};
+  gsl_vector *u = gsl_vector_calloc((size_t)ly.n);
+  gsl_multiroot_fsolver *so =
+      gsl_multiroot_fsolver_alloc(gsl_multiroot_fsolver_hybrids, (size_t)ly.n);
+  int status = gsl_multiroot_fsolver_set(so, &fn, u), it = 0;
+  double res = fmax(gsl_vector_max(so->f), -gsl_vector_min(so->f));
+  while (status == GSL_SUCCESS && !(res <= SPH_LAYER_TOL) && it < SPH_LAYER_ITER) {
+    status = gsl_multiroot_fsolver_iterate(so);
+    it++;
+    res = fmax(gsl_vector_max(so->f), -gsl_vector_min(so->f));
+  }
+  gsl_set_error_handler(handler);
+  if (!(res <= SPH_LAYER_TOL))
+    cmn_input_error(
+        "repack.layer_equilibrium: no equilibrium of the %d layers found (%s after %d "
+        "iterations): a layer's mean vertical acceleration is still %.3g |g|",
+        ly.n, status ? gsl_strerror(status) : "no convergence", it, res);
+  /* the state at the root (the solver's last evaluation may be elsewhere) */
+  sv->layer_shift = cmn_malloc((size_t)ly.n * sizeof *sv->layer_shift);
+  for (int k = 0; k < ly.n; k++) sv->layer_shift[k] = gsl_vector_get(so->x, (size_t)k);
+  sv->layer_count = ly.n;
+  sv->layer_residual = res;
+  layers_residual(so->x, &ly, so->f);
+  gsl_multiroot_fsolver_free(so);
+  gsl_vector_free(u);
+  free(ly.height0);
+  free(ly.layer);
+  free(ly.count);
+}
+
+/*
  * The settling run (repack.settle): the case's own dynamics from the initial state for cfg.settle
  * seconds, then every fluid velocity set to zero and the clock back to t = 0, step 0
  * (docs/sph-solver.md §8). A failed step stops the set-up with the step's message.
@@ -282,6 +388,7 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
     if (cfg->vertex_volume == SPH_VVOL_FITTED) vertex_masses(sv);
     sph_solver_boundary_values(sv);
   }
+  if (cfg->layer_equilibrium) layer_equilibrium(sv, &prof);
   profile_free(&prof);
   fluid_velocity(sv, wave);
   if (wave) sph_open_source_free(wave);
@@ -339,6 +446,7 @@ void sph_solver_free(struct sph_solver *sv) {
   free(sv->seg_group);
   free(sv->vert_group);
   free(sv->vert_bc);
+  free(sv->layer_shift);
   sph_open_free(sv->open);
   sph_nbrs_free(&sv->nb);
   sph_system_free(&sv->sys);

@@ -232,6 +232,7 @@ static int layers_residual(const gsl_vector *u, void *params, gsl_vector *out) {
 static void layer_equilibrium(struct sph_solver *sv, const struct profile *pr) {
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const double dr = sv->sys.dr;
+  if (f->n == 0) return;
   struct layers ly = {
       sv,   pr, cmn_malloc((f->n + 1) * sizeof(double)), cmn_malloc((f->n + 1) * sizeof(int)),
       NULL, 0};

@@ -1,8 +1,9 @@
 /*
  * Restart is bit-identical (same thread count): a run to time.end, and the same run stopped at
  * time.max_steps (exit 3) and continued with --restart, give byte-identical diagnostics.csv,
- * probes.csv, forces.csv, VTU files and final checkpoint (with an imposed flux, and with an open
- * boundary and its open_<name>.csv, too); so does a run stopped by SIGTERM and
+ * probes.csv, forces.csv, VTU files and final checkpoint (with an imposed flux, with the set-up
+ * before t = 0 — repacking, layer equilibrium, settling — and with an open boundary and its
+ * open_<name>.csv, too); so does a run stopped by SIGTERM and
  * restarted. A restart whose case differs outside `time` is refused. Also the library level: N
  * steps, or k steps + checkpoint write + read into a fresh solver + N − k steps, give bitwise equal
  * particle stores.
@@ -176,6 +177,33 @@ static void test_command_restart(void **state) {
     snprintf(pa, sizeof pa, "%s/%s", oa, open_files[i]);
     snprintf(pb, sizeof pb, "%s/%s", ob, open_files[i]);
     same_file(pa, pb);
+  }
+
+  /* The same with the set-up before t = 0 (repacking, layer equilibrium, settling run), whose
+   * result (positions, densities, masses) the checkpoint holds. */
+  const char *pre = "repack.steps=50;repack.layer_equilibrium=true;repack.settle=0.02";
+  char pa_[600], pb_[600], pset[400], pck[700];
+  snprintf(pa_, sizeof pa_, "%s", path("setup_full", NULL));
+  snprintf(pb_, sizeof pb_, "%s", path("setup_split", NULL));
+  snprintf(pset, sizeof pset, "%s;time.max_steps=23", pre);
+  assert_int_equal(run(pa_, pre, NULL), 0);
+  assert_int_equal(run(pb_, pset, NULL), CMN_EXIT_INCOMPLETE);
+  snprintf(pck, sizeof pck, "%s/checkpoint.bin", pb_);
+  assert_int_equal(run(pb_, pre, pck), 0);
+  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    char qa[800], qb[800];
+    snprintf(qa, sizeof qa, "%s/%s", pa_, files[i]);
+    snprintf(qb, sizeof qb, "%s/%s", pb_, files[i]);
+    same_file(qa, qb);
+  }
+  /* ... and its start differs from the plain run's (the set-up did something) */
+  {
+    size_t la, lb;
+    char *x = slurp(path("full", "fluid_000000.vtu"), &la);
+    char *y = slurp(path("setup_full", "fluid_000000.vtu"), &lb);
+    assert_true(la != lb || memcmp(x, y, la) != 0);
+    free(x);
+    free(y);
   }
 
   /* SIGTERM: the run writes a checkpoint and exits with 128 + 15; restarting it ends like the

@@ -114,6 +114,26 @@ static int run(const char *out, const char *set, const char *restart) {
   return sph_cmd_run(argc, argv);
 }
 
+/* The case with `set` (NULL: as it is; "key=value" items separated by ';') run to time.end in
+ * <name>_full, and stopped at time.max_steps (exit 3, as sabre-fv1d; checkpoint written) then
+ * continued with --restart in <name>_split: the listed files must be byte-identical. */
+static void split_run(const char *name, const char *set, const char *const *files, size_t n) {
+  char a[600], b[600], stop[700], ck[700];
+  snprintf(a, sizeof a, "%s_full", path(name, NULL));
+  snprintf(b, sizeof b, "%s_split", path(name, NULL));
+  snprintf(stop, sizeof stop, "%s%stime.max_steps=23", set ? set : "", set ? ";" : "");
+  assert_int_equal(run(a, set, NULL), 0);
+  assert_int_equal(run(b, stop, NULL), CMN_EXIT_INCOMPLETE);
+  snprintf(ck, sizeof ck, "%s/checkpoint.bin", b);
+  assert_int_equal(run(b, set, ck), 0);
+  for (size_t i = 0; i < n; i++) {
+    char pa[800], pb[800];
+    snprintf(pa, sizeof pa, "%s/%s", a, files[i]);
+    snprintf(pb, sizeof pb, "%s/%s", b, files[i]);
+    same_file(pa, pb);
+  }
+}
+
 static void test_command_restart(void **state) {
   (void)state;
   snprintf(dir, sizeof dir, "/tmp/sabre-test-restart-XXXXXX");
@@ -121,85 +141,32 @@ static void test_command_restart(void **state) {
   FILE *f = fopen(path("case.yaml", NULL), "w");
   fputs(case_text, f);
   fclose(f);
-  char a[600], b[600];
-  snprintf(a, sizeof a, "%s", path("full", NULL));
-  snprintf(b, sizeof b, "%s", path("split", NULL));
-  assert_int_equal(run(a, NULL, NULL), 0);
-  /* time.max_steps: stopped before time.end, exit 3 (as sabre-fv1d), checkpoint written */
-  assert_int_equal(run(b, "time.max_steps=23", NULL), CMN_EXIT_INCOMPLETE);
-  char ck[700];
-  snprintf(ck, sizeof ck, "%s/checkpoint.bin", b);
-  assert_int_equal(run(b, NULL, ck), 0);
   const char *files[] = {"diagnostics.csv", "probes.csv",    "forces.csv",
                          "checkpoint.bin",  "particles.pvd", "fluid_000003.vtu"};
-  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-    char pa[800], pb[800];
-    snprintf(pa, sizeof pa, "%s/%s", a, files[i]);
-    snprintf(pb, sizeof pb, "%s/%s", b, files[i]);
-    same_file(pa, pb);
-  }
+  const size_t nfiles = sizeof files / sizeof files[0];
+  split_run("plain", NULL, files, nfiles);
   /* The same with an imposed flux: M(62–63) depend on the last measured velocities, so the
    * controller's history must travel in the checkpoint for the restart to be bit-identical. */
-  const char *flux = "imposed_flux={velocity: 0.05, area: 0.2, point: [0.1, 0.1]}";
-  char fa[600], fb[600], fset[400], fck[700];
-  snprintf(fa, sizeof fa, "%s", path("flux_full", NULL));
-  snprintf(fb, sizeof fb, "%s", path("flux_split", NULL));
-  snprintf(fset, sizeof fset, "%s;time.max_steps=23", flux);
-  assert_int_equal(run(fa, flux, NULL), 0);
-  assert_int_equal(run(fb, fset, NULL), CMN_EXIT_INCOMPLETE);
-  snprintf(fck, sizeof fck, "%s/checkpoint.bin", fb);
-  assert_int_equal(run(fb, flux, fck), 0);
-  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-    char pa[800], pb[800];
-    snprintf(pa, sizeof pa, "%s/%s", fa, files[i]);
-    snprintf(pb, sizeof pb, "%s/%s", fb, files[i]);
-    same_file(pa, pb);
-  }
+  split_run("flux", "imposed_flux={velocity: 0.05, area: 0.2, point: [0.1, 0.1]}", files, nfiles);
 
   /* The same with an open face (the column's left wall, hydrostatic with the measured level):
    * the open-boundary values are recomputed from the store at every evaluation, so nothing but
    * the store travels in the checkpoint, and open_left.csv continues byte for byte. */
-  const char *open =
-      "geometry.walls[0].open=[x-];open_boundaries=[{name: left, wall: 0, impose: pressure, "
-      "hydrostatic: {depth: measured}}]";
-  char oa[600], ob[600], oset[600], ock[700];
-  snprintf(oa, sizeof oa, "%s", path("open_full", NULL));
-  snprintf(ob, sizeof ob, "%s", path("open_split", NULL));
-  snprintf(oset, sizeof oset, "%s;time.max_steps=23", open);
-  assert_int_equal(run(oa, open, NULL), 0);
-  assert_int_equal(run(ob, oset, NULL), CMN_EXIT_INCOMPLETE);
-  snprintf(ock, sizeof ock, "%s/checkpoint.bin", ob);
-  assert_int_equal(run(ob, open, ock), 0);
   const char *open_files[] = {"diagnostics.csv", "open_left.csv", "forces.csv",
                               "checkpoint.bin",  "particles.pvd", "boundary_000003.vtu"};
-  for (size_t i = 0; i < sizeof open_files / sizeof open_files[0]; i++) {
-    char pa[800], pb[800];
-    snprintf(pa, sizeof pa, "%s/%s", oa, open_files[i]);
-    snprintf(pb, sizeof pb, "%s/%s", ob, open_files[i]);
-    same_file(pa, pb);
-  }
+  split_run("open",
+            "geometry.walls[0].open=[x-];open_boundaries=[{name: left, wall: 0, impose: pressure, "
+            "hydrostatic: {depth: measured}}]",
+            open_files, sizeof open_files / sizeof open_files[0]);
 
   /* The same with the set-up before t = 0 (repacking, layer equilibrium, settling run), whose
    * result (positions, densities, masses) the checkpoint holds. */
-  const char *pre = "repack.steps=50;repack.layer_equilibrium=true;repack.settle=0.02";
-  char pa_[600], pb_[600], pset[400], pck[700];
-  snprintf(pa_, sizeof pa_, "%s", path("setup_full", NULL));
-  snprintf(pb_, sizeof pb_, "%s", path("setup_split", NULL));
-  snprintf(pset, sizeof pset, "%s;time.max_steps=23", pre);
-  assert_int_equal(run(pa_, pre, NULL), 0);
-  assert_int_equal(run(pb_, pset, NULL), CMN_EXIT_INCOMPLETE);
-  snprintf(pck, sizeof pck, "%s/checkpoint.bin", pb_);
-  assert_int_equal(run(pb_, pre, pck), 0);
-  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-    char qa[800], qb[800];
-    snprintf(qa, sizeof qa, "%s/%s", pa_, files[i]);
-    snprintf(qb, sizeof qb, "%s/%s", pb_, files[i]);
-    same_file(qa, qb);
-  }
+  split_run("setup", "repack.steps=50;repack.layer_equilibrium=true;repack.settle=0.02", files,
+            nfiles);
   /* ... and its start differs from the plain run's (the set-up did something) */
   {
     size_t la, lb;
-    char *x = slurp(path("full", "fluid_000000.vtu"), &la);
+    char *x = slurp(path("plain_full", "fluid_000000.vtu"), &la);
     char *y = slurp(path("setup_full", "fluid_000000.vtu"), &lb);
     assert_true(la != lb || memcmp(x, y, la) != 0);
     free(x);
@@ -238,7 +205,7 @@ static void test_command_restart(void **state) {
   }
   /* The run really was split: the uninterrupted run has many rows. */
   size_t n;
-  char *d = slurp(path("full", "diagnostics.csv"), &n);
+  char *d = slurp(path("plain_full", "diagnostics.csv"), &n);
   int rows = 0;
   for (size_t i = 0; i < n; i++) rows += d[i] == '\n';
   free(d);

@@ -178,6 +178,9 @@ has 'layer equilibrium: 8 layers moved up by [-+][0-9.]*, .*largest mean vertica
 run 2 20 "$tool" run "$tmp/open.yaml" --output "$tmp/lay2" --set repack.layer_equilibrium=true
 has 'repack.layer_equilibrium: the layer equilibrium of water at rest needs no open_boundaries' err
 [ -e "$tmp/lay2" ] && bad "an output directory was created for a refused case" || ok
+cp "$src/cases/sph/stokes_waves/periodic.yaml" "$tmp/wave.yaml"
+run 2 20 "$tool" run "$tmp/wave.yaml" --output "$tmp/lay3" --set repack.layer_equilibrium=true
+has 'repack.layer_equilibrium: the layer equilibrium of water at rest needs no initial.wave' err
 run 2 20 "$tool" stability "$tmp/case.yaml" --output "$tmp/st4" --max-unknowns 100
 has '128 unknowns, more than the 100 of stability' err
 run 2 10 "$tool" stability "$tmp/case.yaml" --output "$tmp/st5" --modes -1

@@ -269,12 +269,10 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   cfg->free_surface = NAN;
   if (cmn_case_has(c, "initial.free_surface"))
     TRY(cmn_case_get_double(c, "initial.free_surface", -INFINITY, INFINITY, &cfg->free_surface));
-  if (cfg->hydrostatic) {
-    double g2 = cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
-                cfg->gravity[2] * cfg->gravity[2];
-    if (!(g2 > 0.0))
-      return cmn_case_fail(c, "initial.pressure", "hydrostatic pressure needs a non-zero gravity");
-  }
+  const double g2 = cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
+                    cfg->gravity[2] * cfg->gravity[2];
+  if (cfg->hydrostatic && !(g2 > 0.0))
+    return cmn_case_fail(c, "initial.pressure", "hydrostatic pressure needs a non-zero gravity");
   /* numerics */
   TRY(cmn_case_opt_double(c, "numerics.gradient_k", 1.0, 0.0, 2.0, &cfg->grad_k));
   static const char *const diffusions[] = {"none", "ferrari", "brezzi", NULL};
@@ -348,28 +346,25 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   if (rmn_eos_init(&eos, cfg->rho0, cfg->c0, cfg->xi) != RMN_SUCCESS)
     return cmn_case_fail(c, "fluid", "invalid equation of state");
   TRY(sph_open_config_read(&cfg->open, c, dim, cfg->gravity, &eos));
-  /* a settling run before t = 0 is for closed still-water set-ups: open boundaries would create and
-   * delete particles and the imposed flux would drive a flow before the start */
-  if (cfg->settle > 0.0 && (cfg->open.ngroups > 0 || cfg->flux_method != SPH_FLUXSEL_OFF))
+  /* the settling run and the layer equilibrium are for closed set-ups at rest: open boundaries
+   * would create and delete particles and the imposed flux would drive a flow before the start */
+  const char *driven = cfg->open.ngroups > 0                 ? "open_boundaries"
+                       : cfg->flux_method != SPH_FLUXSEL_OFF ? "imposed_flux"
+                                                             : NULL;
+  if (cfg->settle > 0.0 && driven)
     return cmn_case_fail(c, "repack.settle",
                          "a settling run is for closed domains at rest: not with %s; remove the "
                          "key or set it to 0",
-                         cfg->open.ngroups > 0 ? "open_boundaries" : "imposed_flux");
+                         driven);
   /* the layer equilibrium balances gravity in a fluid at rest with horizontal layers */
-  if (cfg->layer_equilibrium) {
-    const double g2 = cfg->gravity[0] * cfg->gravity[0] + cfg->gravity[1] * cfg->gravity[1] +
-                      cfg->gravity[2] * cfg->gravity[2];
-    const char *why = !(g2 > 0.0)                           ? "a non-zero gravity"
-                      : cfg->initial_wave                   ? "no initial.wave"
-                      : cfg->open.ngroups > 0               ? "no open_boundaries"
-                      : cfg->flux_method != SPH_FLUXSEL_OFF ? "no imposed_flux"
-                                                            : NULL;
-    if (why)
-      return cmn_case_fail(c, "repack.layer_equilibrium",
-                           "the layer equilibrium of water at rest needs %s; remove the key or set "
-                           "it to false",
-                           why);
-  }
+  if (cfg->layer_equilibrium && (!(g2 > 0.0) || cfg->initial_wave || driven))
+    return cmn_case_fail(c, "repack.layer_equilibrium",
+                         "the layer equilibrium of water at rest needs %s%s; remove the key or "
+                         "set it to false",
+                         !(g2 > 0.0) ? "a non-zero gravity" : "no ",
+                         !(g2 > 0.0)         ? ""
+                         : cfg->initial_wave ? "initial.wave"
+                                             : driven);
   if (cfg->initial_wave)
     TRY(sph_open_wave_read(c, "initial.wave", dim, cfg->gravity, &eos, &cfg->wave));
   return 0;

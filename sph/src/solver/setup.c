@@ -78,6 +78,11 @@ struct profile {
   const struct sph_open_source *wave; /* initial.wave (NULL: none) */
 };
 
+/* Height of fluid particle a along the profile's up [m]. */
+static double profile_height(const struct profile *pr, const struct sph_parts *f, size_t a) {
+  return pr->up[0] * f->x[0][a] + pr->up[1] * f->x[1][a] + pr->up[2] * f->x[2][a];
+}
+
 static void profile_init(struct profile *pr, const struct sph_solver *sv,
                          const struct sph_open_source *wave) {
   const struct sph_config *cfg = &sv->cfg;
@@ -93,9 +98,7 @@ static void profile_init(struct profile *pr, const struct sph_solver *sv,
   pr->level = cfg->free_surface;
   if (isnan(pr->level)) {
     pr->level = -INFINITY;
-    for (size_t a = 0; a < f->n; a++)
-      pr->level =
-          fmax(pr->level, pr->up[0] * f->x[0][a] + pr->up[1] * f->x[1][a] + pr->up[2] * f->x[2][a]);
+    for (size_t a = 0; a < f->n; a++) pr->level = fmax(pr->level, profile_height(pr, f, a));
     pr->level += 0.5 * sys->dr;
   }
   pr->p_expr = compile_initial(cfg->p0_expr, "initial.pressure", sys->dim);
@@ -210,9 +213,8 @@ static int layers_residual(const gsl_vector *u, void *params, gsl_vector *out) {
   struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
   const double *up = ly->pr->up;
   for (size_t a = 0; a < f->n; a++) {
-    const double height = up[0] * f->x[0][a] + up[1] * f->x[1][a] + up[2] * f->x[2][a];
-    const double move =
-        ly->height0[a] + sv->sys.dr * gsl_vector_get(u, (size_t)ly->layer[a]) - height;
+    const double move = ly->height0[a] + sv->sys.dr * gsl_vector_get(u, (size_t)ly->layer[a]) -
+                        profile_height(ly->pr, f, a);
     for (int c = 0; c < 3; c++) f->x[c][a] += move * up[c];
   }
   fluid_density(sv, ly->pr);
@@ -238,7 +240,7 @@ static void layer_equilibrium(struct sph_solver *sv, const struct profile *pr) {
       NULL, 0};
   double top = -INFINITY, bottom = INFINITY;
   for (size_t a = 0; a < f->n; a++) {
-    ly.height0[a] = pr->up[0] * f->x[0][a] + pr->up[1] * f->x[1][a] + pr->up[2] * f->x[2][a];
+    ly.height0[a] = profile_height(pr, f, a);
     top = fmax(top, ly.height0[a]);
     bottom = fmin(bottom, ly.height0[a]);
   }

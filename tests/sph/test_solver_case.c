@@ -183,6 +183,76 @@ static void test_layer_equilibrium(void **state) {
   fixture_solver_destroy(s1);
 }
 
+/* probes.gauges' level (sph_solver_level) on the lattice start (top row Δr/2 below H = 0.2125 m):
+ * H within tol[0] Δr at 2h or more from the side walls, tol[1] Δr from h to 2h and tol[2] Δr
+ * closer (the first column's line). The errors next to walls are the vertex layer's: its point
+ * volumes stand for the Δr/2 slab the first row leaves (measured, fitted / geometric volumes:
+ * 2D 0.0014 / −0.014 Δr at h, 0.042 / −0.032 Δr at Δr; 3D up to 0.0019 / −0.029 Δr at h,
+ * 0.14 / −0.078 Δr on the corner column); without the vertex sum, 0.12 Δr low at h. The particle
+ * gauge (sph_solver_gauge) reads H exactly. */
+static void level_check(const char *text, const double (*at)[3], int n, const double tol[3]) {
+  struct sph_solver *sv = fixture_solver_from_case(text);
+  const double dr = sv->sys.dr, h = sv->sys.h, H = 0.2125;
+  for (int i = 0; i < n; i++) {
+    const double level = sph_solver_level(sv, at[i]), eta = sph_solver_gauge(sv, at[i]);
+    double wall = INFINITY; /* distance to the nearest side wall (the box is [0, 0.3]) */
+    for (int c = 0; c < sv->sys.dim - 1; c++) wall = fmin(wall, fmin(at[i][c], 0.3 - at[i][c]));
+    print_message("%dD gauge at %.3f, %.3f (%.0f dr from a wall): level - H = %+.5f dr\n",
+                  sv->sys.dim, at[i][0], at[i][1], wall / dr, (level - H) / dr);
+    assert_true(fabs(eta - H) <= 1e-12);
+    assert_true(fabs(level - H) <= tol[wall >= 2.0 * h - 1e-12 ? 0
+                                       : wall >= h - 1e-12     ? 1
+                                                               : 2] *
+                                       dr);
+  }
+  fixture_solver_destroy(sv);
+}
+
+#define LEVEL_TANK                                               \
+  "geometry:\n"                                                  \
+  "  dimension: 3\n"                                             \
+  "  dr: 0.025\n"                                                \
+  "  h_over_dr: 2\n"                                             \
+  "  first_row: 1\n"                                             \
+  "  walls: [{type: box, lo: [0, 0, 0], hi: [0.3, 0.3, 0.3]}]\n" \
+  "  fluid: [{type: box, lo: [0, 0, 0], hi: [0.3, 0.3, 0.2]}]\n" \
+  "fluid: {rho0: 1000, c0: 20}\n"                                \
+  "gravity: [0, 0, -9.81]\n"                                     \
+  "initial: {pressure: hydrostatic, free_surface: 0.2125}\n"     \
+  "time: {end: 1}\n"                                             \
+  "%s"
+
+static void test_level(void **state) {
+  (void)state;
+  const char *geometric = "numerics: {vertex_volume: geometric}\n";
+  char text[2048];
+  const double at2[][3] = {{0.025, 0.1, 0}, {0.05, 0, 0}, {0.075, 0, 0}, {0.15, 0, 0}};
+  snprintf(text, sizeof text, SETTLE_CASE, "");
+  level_check(text, at2, 4, (const double[3]){1e-3, 2e-3, 0.05});
+  snprintf(text, sizeof text, SETTLE_CASE, geometric);
+  level_check(text, at2, 4, (const double[3]){1e-3, 0.02, 0.04});
+  const double at3[][3] = {
+      {0.025, 0.15, 0}, {0.025, 0.025, 0}, {0.05, 0.15, 0}, {0.05, 0.05, 0}, {0.15, 0.15, 0}};
+  snprintf(text, sizeof text, LEVEL_TANK, "");
+  level_check(text, at3, 5, (const double[3]){1e-3, 3e-3, 0.16});
+  snprintf(text, sizeof text, LEVEL_TANK, geometric);
+  level_check(text, at3, 5, (const double[3]){1e-3, 0.035, 0.09});
+  /* a column of water 3 Δr wide against the left wall: no level 2h beyond its side, and none
+   * where only its side's particles are within 2h (their sum stays below 1/2) */
+  snprintf(text, sizeof text, SETTLE_CASE, "");
+  char *fluid = strstr(text, "hi: [0.3, 0.2]");
+  assert_non_null(fluid);
+  memcpy(fluid, "hi: [0.1, 0.2]", 14);
+  struct sph_solver *sv = fixture_solver_from_case(text);
+  const double beyond[3] = {0.25, 0, 0}, side[3] = {0.15, 0, 0}, inside[3] = {0.05, 0, 0};
+  const double l_in = sph_solver_level(sv, inside);
+  print_message("3-column water: level at x = 0.05 m: %+.4f dr from H\n", (l_in - 0.2125) / 0.025);
+  assert_true(isnan(sph_solver_level(sv, beyond)) && isnan(sph_solver_gauge(sv, beyond)));
+  assert_true(isnan(sph_solver_level(sv, side)) && isfinite(sph_solver_gauge(sv, side)));
+  assert_true(fabs(l_in - 0.2125) <= 0.5 * sv->sys.dr);
+  fixture_solver_destroy(sv);
+}
+
 static void test_missing(void **state) {
   (void)state;
   char err[512];
@@ -199,7 +269,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_defaults),          cmocka_unit_test(test_errors),
       cmocka_unit_test(test_missing),           cmocka_unit_test(test_settle),
-      cmocka_unit_test(test_layer_equilibrium),
+      cmocka_unit_test(test_layer_equilibrium), cmocka_unit_test(test_level),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

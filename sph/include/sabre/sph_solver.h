@@ -477,6 +477,15 @@ double sph_solver_probe_pressure(const struct sph_solver *sv, const double *x);
 /** Free-surface elevation above the horizontal position of x (along −g): the highest fluid
  *  particle within h of the vertical line, plus Δr/2 [m]; NaN when there is none. */
 double sph_solver_gauge(const struct sph_solver *sv, const double *x);
+/** Kernel-sum level above the horizontal position of x (along −g) [m]: the highest point of the
+ *  vertical line where the fluid fills half of the kernel's room,
+ *  Σ_F V_b w(x − x_b) = ½ (γ(x) − Σ_V V_v w(x − x_v)) (V = m/ρ; γ of the walls at x by
+ *  sph_gamma_eval; the vertex sum is the wall layer the fluid particles do not cover). H exactly
+ *  for a lattice whose top row is Δr/2 below H, next to walls as well. Searched down from Δr
+ *  above the highest fluid particle within 2h of the line (steps of Δr/4, then GSL's Brent solver
+ *  to 1e-9 Δr). NaN when no fluid is within 2h of the line or the sum never reaches ½ (a film
+ *  thinner than about Δr). Allocates O(particles near the line); no state. */
+double sph_solver_level(const struct sph_solver *sv, const double *x);
 /** The gauges' vertical: the unit vector −g/|g| (y when g = 0), written to up. */
 void sph_gauge_up(const double gravity[3], double up[3]);
 /** Force of the fluid on each force group [N], out[group][3]: pressure −Σ_s p_s |s| n_s over the

@@ -98,7 +98,7 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
   /* with an imposed flux: ṽ in the slice and the driving acceleration (docs/sph-case-file.md) */
   const int ndiag = cfg->flux_method != SPH_FLUXSEL_OFF ? 11 : 9;
   rf->diag = csv_open(rf->dir, "diagnostics.csv", ndiag, dnames, restart, sv->time);
-  int np = 1 + cfg->nprobes + cfg->ngauges;
+  int np = 1 + cfg->nprobes + 2 * cfg->ngauges;
   char **pn = cmn_malloc((size_t)np * sizeof *pn);
   pn[0] = "time";
   for (int i = 0; i < cfg->nprobes; i++) {
@@ -108,6 +108,8 @@ static void open_files(struct run_files *rf, const struct sph_solver *sv,
   for (int i = 0; i < cfg->ngauges; i++) {
     pn[1 + cfg->nprobes + i] = cmn_malloc(32);
     snprintf(pn[1 + cfg->nprobes + i], 32, "eta%d", i);
+    pn[1 + cfg->nprobes + cfg->ngauges + i] = cmn_malloc(32);
+    snprintf(pn[1 + cfg->nprobes + cfg->ngauges + i], 32, "level%d", i);
   }
   rf->probes = np > 1
                    ? csv_open(rf->dir, "probes.csv", np, (const char *const *)pn, restart, sv->time)
@@ -156,12 +158,14 @@ static void write_rows(struct run_files *rf, struct sph_solver *sv, int failed) 
   if (cmn_csv_row(rf->diag, row))
     cmn_error("cannot write %s/diagnostics.csv: %s", rf->dir, strerror(errno));
   if (rf->probes) {
-    double vals[1 + 2 * SPH_MAX_PROBES];
+    double vals[1 + 3 * SPH_MAX_PROBES];
     vals[0] = sv->time;
     for (int i = 0; i < cfg->nprobes; i++)
       vals[1 + i] = sph_solver_probe_pressure(sv, cfg->probes[i]);
-    for (int i = 0; i < cfg->ngauges; i++)
+    for (int i = 0; i < cfg->ngauges; i++) {
       vals[1 + cfg->nprobes + i] = sph_solver_gauge(sv, cfg->gauges[i]);
+      vals[1 + cfg->nprobes + cfg->ngauges + i] = sph_solver_level(sv, cfg->gauges[i]);
+    }
     if (cmn_csv_row(rf->probes, vals))
       cmn_error("cannot write %s/probes.csv: %s", rf->dir, strerror(errno));
   }

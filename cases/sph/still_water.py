@@ -5,12 +5,12 @@ like sabre_output.py (the scripts add cases/sph to sys.path). Only the standard 
 needed; matplotlib for the figures.
 
     Tank(rho0, c0, xi, g, H, dr)       the case's constants; tank.hydrostatic(depth) [Pa]
-    surface(run)                       free surface from the eta* gauges of probes.csv
+    surface(run, prefix)               free surface from the level* (or eta*) gauges of probes.csv
     Criteria(check)                    prints one 'ok  '/'FAIL' line per criterion; done() exits
     check_rest(tank, run, axis, crit)  criteria mass, particles, rest, hydrostatic
     tail_max_speed(d), rms_speed(run, d)  largest max|u| of the last 10 %; mean fluid speed
     check_floor_force(tank, run, ...)  criterion floor force (force group `floor`)
-    check_surface(tank, out, crit)     criteria surface and uncorrected rises
+    check_surface(tank, out, crit)     criteria surface and uncorrected detaches
     pyplot()                           matplotlib.pyplot on the Agg backend, or None
     plot_profile(ax, tank, ...)        the final pressure against the Tait column
     figure_rest(tank, ...)             the three panels (surface, max|u|, final pressure profile)
@@ -39,11 +39,13 @@ class Tank:
         return self.B * ((1 + (xi - 1) * self.g * depth / self.c0**2) ** (xi / (xi - 1)) - 1)
 
 
-def surface(run):
-    """(times, mean elevation of the eta* gauges) of the run directory `run`, from probes.csv."""
+def surface(run, prefix="level"):
+    """(times, mean elevation of the gauges) of the run directory `run`, from probes.csv: the
+    kernel-sum levels (level*, where the particles' volume ends) or, with prefix "eta", the
+    highest particle + dr/2 (eta*, the top row's height; docs/sph-solver.md §6)."""
     p = read_csv(f"{run}/probes.csv", lists=True)
-    etas = [k for k in p if k.startswith("eta")]
-    return p["time"], [sum(p[k][i] for k in etas) / len(etas) for i in range(len(p["time"]))]
+    cols = [k for k in p if k.startswith(prefix)]
+    return p["time"], [sum(p[k][i] for k in cols) / len(cols) for i in range(len(p["time"]))]
 
 
 class Criteria:
@@ -128,22 +130,33 @@ def check_floor_force(tank, run, column, area, crit):
 
 
 def check_surface(tank, out, crit):
-    """Criteria surface (the corrected run's free surface within 0.5 dr of H throughout) and
-    uncorrected rises (at the end of out/uncorrected/ its surface is more than 0.1 dr above H and
-    above the corrected one at that time). Returns the two surfaces, (times, eta) each."""
+    """Criteria surface (the corrected run's kernel-sum level within 0.5 dr of H throughout) and
+    uncorrected detaches (M §7.1: without the gravity correction the free surface detaches; over
+    out/uncorrected/ the top particles rise away from the fluid's level: eta - level grows by more
+    than 0.1 dr, and by 0.1 dr more than in the corrected run over the same time). eta, the top
+    row's height, is printed for reference. Returns the two runs' surfaces, (times, level, eta)
+    each."""
     H, DR = tank.H, tank.dr
-    ts, eta = surface(f"{out}/corrected")
-    dev = max(abs(e - H) for e in eta)
+    runs = {}
+    for key in ("corrected", "uncorrected"):
+        t, level = surface(f"{out}/{key}")
+        runs[key] = (t, level, surface(f"{out}/{key}", "eta")[1])
+    ts, lev, eta = runs["corrected"]
+    dev = max(abs(e - H) for e in lev)
+    deta = max(abs(e - H) for e in eta)
     crit("surface", dev <= 0.5 * DR,
-         f"corrected: max |eta - H| = {dev:.4f} m = {dev / DR:.2f} dr (<= 0.5 dr)")
-    tu, etau = surface(f"{out}/uncorrected")
+         f"corrected: max |level - H| = {dev:.4f} m = {dev / DR:.3f} dr (<= 0.5 dr); "
+         f"top particle + dr/2: max |eta - H| = {deta / DR:.2f} dr")
+    tu, levu, etau = runs["uncorrected"]
     t_cmp = tu[-1]
-    eta_c = [e for t, e in zip(ts, eta) if t <= t_cmp + 1e-9][-1]
-    rise = etau[-1] - H
-    crit("uncorrected rises", rise > 0.1 * DR and etau[-1] > eta_c + 0.1 * DR,
-         f"uncorrected: eta - H = {rise:+.4f} m = {rise / DR:+.2f} dr at t = {t_cmp:.2f} s "
-         f"(corrected {(eta_c - H) / DR:+.2f} dr)")
-    return (ts, eta), (tu, etau)
+    k = [i for i, t in enumerate(ts) if t <= t_cmp + 1e-9][-1]
+    grow_u = (etau[-1] - levu[-1]) - (etau[0] - levu[0])
+    grow_c = (eta[k] - lev[k]) - (eta[0] - lev[0])
+    crit("uncorrected detaches", grow_u > 0.1 * DR and grow_u > grow_c + 0.1 * DR,
+         f"eta - level grows by {grow_u / DR:+.3f} dr over the uncorrected run to t = {t_cmp:.2f} s "
+         f"({grow_c / DR:+.3f} dr corrected); uncorrected level - H = {(levu[-1] - H) / DR:+.3f} dr, "
+         f"eta - H = {(etau[-1] - H) / DR:+.3f} dr")
+    return runs["corrected"], runs["uncorrected"]
 
 
 def pyplot():
@@ -170,10 +183,23 @@ def plot_profile(ax, tank, hs, ps, t_end, grid, label):
     ax.legend(fontsize=8)
 
 
+def surface_panel(ax, surfaces, c0, H, dr):
+    """The free surface over t c0/H as in M Fig. 8: surfaces {label: (times, level, eta)}, the
+    kernel-sum level solid and the top particle + dr/2 dashed in the same colour."""
+    for lab, (t, level, eta) in surfaces.items():
+        line, = ax.plot([ti * c0 / H for ti in t], [e / H for e in level], label=lab)
+        ax.plot([ti * c0 / H for ti in t], [e / H for e in eta], "--", lw=0.8,
+                color=line.get_color())
+    ax.axhspan(1 - 0.5 * dr / H, 1 + 0.5 * dr / H, color="0.9", label="H ± Δr/2")
+    ax.set_xlabel("t c0 / H")
+    ax.set_ylabel("free surface / H (5 gauges: level —, top particle --)")
+    ax.legend(fontsize=8)
+
+
 def figure_rest(tank, surfaces, speeds, hs, ps, t_end, vertical, png):
     """The three-panel figure of the still-water cases, written to png: the free surface over
-    t c0/H as in M Fig. 8 (surfaces: {label: (times, eta)}), max|u|/sqrt(gH) over t/sqrt(H/g)
-    against the 1 % line (speeds: {label: diagnostics.csv as lists}), and the final pressures
+    t c0/H as in M Fig. 8 (surfaces: {label: (times, level, eta)}, surface_panel), max|u|/sqrt(gH)
+    over t/sqrt(H/g) against the 1 % line (speeds: {label: diagnostics.csv as lists}), and the final pressures
     ps at heights hs (time t_end; vertical names that axis) against the Tait column. Returns
     False without matplotlib."""
     plt = pyplot()
@@ -181,12 +207,7 @@ def figure_rest(tank, surfaces, speeds, hs, ps, t_end, vertical, png):
         return False
     G, C0, H, DR = tank.g, tank.c0, tank.H, tank.dr
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
-    for lab, (t, e) in surfaces.items():
-        ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=lab)
-    ax1.axhspan(1 - 0.5 * DR / H, 1 + 0.5 * DR / H, color="0.9", label="H ± Δr/2")
-    ax1.set_xlabel("t c0 / H")
-    ax1.set_ylabel("free surface / H (mean of 5 gauges)")
-    ax1.legend(fontsize=8)
+    surface_panel(ax1, surfaces, C0, H, DR)
     for lab, dd in speeds.items():
         ax2.semilogy([ti / math.sqrt(H / G) for ti in dd["time"]],
                      [max(u, 1e-9) / math.sqrt(G * H) for u in dd["max_speed"]], label=lab)

@@ -13,7 +13,8 @@ import sys
 # cases/sph/still_water.py
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from still_water import (Criteria, Tank, check_floor_force, check_rest,  # noqa: E402
-                         check_surface, plot_profile, pyplot, surface)
+                         check_surface, plot_profile, pyplot, surface,
+                         surface_panel)
 
 TANK = Tank(rho0=1000.0, c0=20.0, xi=7.0, g=9.81, H=1.025, dr=0.05)
 C0, H, DR = TANK.c0, TANK.H, TANK.dr
@@ -27,22 +28,18 @@ def main():
             "uncorrected": "uncorrected M(49)"}
     d, t_end, ys, ps = check_rest(TANK, f"{out}/corrected", 1, crit)
     check_floor_force(TANK, f"{out}/corrected", "floor_fy", 1.0, crit)  # the floor is 1 m wide
-    (ts, eta), (tu, etau) = check_surface(TANK, out, crit)
-    tl, etal = surface(f"{out}/linear")
-    print(f"     linear M(81): max |eta - H| = {max(abs(e - H) for e in etal) / DR:.2f} dr")
+    corrected, uncorrected = check_surface(TANK, out, crit)
+    tl, levl = surface(f"{out}/linear")
+    linear = (tl, levl, surface(f"{out}/linear", "eta")[1])
+    print(f"     linear M(81): max |level - H| = {max(abs(e - H) for e in levl) / DR:.3f} dr")
 
     plt = pyplot()
     if plt is None:
         crit.done()
         return
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
-    for key, (t, e) in {"corrected": (ts, eta), "linear": (tl, etal),
-                        "uncorrected": (tu, etau)}.items():
-        ax1.plot([ti * C0 / H for ti in t], [ei / H for ei in e], label=runs[key])
-    ax1.axhspan(1 - 0.5 * DR, 1 + 0.5 * DR, color="0.9", label="H ± Δr/2")
-    ax1.set_xlabel("t c0 / H")
-    ax1.set_ylabel("free surface / H (mean of 5 gauges)")
-    ax1.legend(fontsize=8)
+    surface_panel(ax1, {runs["corrected"]: corrected, runs["linear"]: linear,
+                        runs["uncorrected"]: uncorrected}, C0, H, DR)
     plot_profile(ax2, TANK, ys, ps, t_end, [i / 100 for i in range(101)], "y [m]")
     fig.tight_layout()
     fig.savefig(f"{out}/still_water_2d.png", dpi=120)

@@ -6,8 +6,8 @@ usage: plot.py OUTPUT_DIR [--check]
   Writes OUTPUT_DIR/dam_break_3d_obstacle.png and prints the figures quoted in README.md.
   --check: exit status 1 unless every criterion of README.md holds.
 
-Reads probes.csv (columns p0..p7 = P1..P8, eta0..eta3 = H1..H4; a gauge without water is NaN and
-drawn as 0), diagnostics.csv, used_case.yaml and the first fluid output (the column's free face and
+Reads probes.csv (columns p0..p7 = P1..P8; level0..level3 = H1..H4, the kernel-sum levels, with
+eta0..eta3, the highest particle + dr/2, dashed; a gauge without water is NaN and drawn as 0), diagnostics.csv, used_case.yaml and the first fluid output (the column's free face and
 height, so that --set geometry.dr=... needs no edit here). The measurements are the samples of
 kleefsman2005_samples.csv (see its header for where they come from).
 
@@ -68,7 +68,11 @@ def main():
     fig, axes = plt.subplots(2, 4, figsize=(16, 7), sharex=True)
     for i in range(4):
         ax = axes[0, i]
-        ax.plot(t, np.nan_to_num(pr["eta%d" % i], nan=0.0), "b-", lw=1, label="SPH, dr = %g m" % dr)
+        if "level%d" % i in pr:  # the kernel-sum level (docs/sph-solver.md §6): spray does not count
+            ax.plot(t, np.nan_to_num(pr["level%d" % i], nan=0.0), "b-", lw=1,
+                    label="SPH, dr = %g m: level" % dr)
+        ax.plot(t, np.nan_to_num(pr["eta%d" % i], nan=0.0), "c--", lw=0.7,
+                label="SPH: top particle + dr/2")
         ax.plot(exp["t"], exp["H%d" % (i + 1)], "ro", ms=3, label="measured (samples)")
         ax.set_title("H%d, x = %s m" % (i + 1, ("0.496", "0.992", "1.488", "2.638")[i]), fontsize=10)
         ax.set_ylim(0, 0.65)

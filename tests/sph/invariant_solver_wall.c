@@ -176,39 +176,46 @@ static void test_contact_line(void **state) {
  * every wall value of the particle's pairs raised by Z_a max(0, −u_n) (u_n its normal velocity
  * relative to that element); at rest, or moving along the walls, it is the same bits as without;
  * an approaching particle is pushed off harder, a receding one sees no change. */
+/* The NX × NY box, Δr = 0.01 m, inviscid, without diffusion, at rest under gravity with the
+ * hydrostatic pressure and the wall impedance of the given form, evaluated. */
+static void impedance_box(struct sph_solver *sv, struct sph_config *cfg, int form) {
+  fixture_config(cfg);
+  cfg->diffusion = SPH_DIFFUSION_NONE;
+  cfg->gravity[1] = -9.81;
+  cfg->hydrostatic = 1;
+  cfg->wall_impedance = form;
+  box(sv, cfg, 0.01, 0.2, 0.2, NX, NY);
+  sph_solver_evaluate(sv);
+}
+
 static void test_wall_impedance(void **state) {
   (void)state;
   sabre_fp_traps_on();
   struct sph_config cfg;
-  fixture_config(&cfg);
-  cfg.diffusion = SPH_DIFFUSION_NONE;
-  cfg.gravity[1] = -9.81;
-  cfg.hydrostatic = 1;
-  cfg.wall_impedance = 1;
   struct sph_solver sv;
-  box(&sv, &cfg, 0.01, 0.2, 0.2, NX, NY);
+  impedance_box(&sv, &cfg, SPH_IMPEDANCE_ACOUSTIC);
   struct sph_system *s = &sv.sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  sph_solver_evaluate(&sv);
   const struct sph_op op = {s, &sv.kernel, &sv.nb};
   const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const size_t a = (size_t)(4 * NX); /* first column, fifth row: sees the left wall only */
+  const struct sph_wall_impedance imp = {sv.impedance, 0.0}; /* the acoustic form */
   double g0[3], g1[3];
   /* at rest */
   sph_op_grad_pressure(&op, cfg.grad_k, pk, a, NULL, 0, NULL, g0);
-  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, sv.impedance, 0, NULL, g1);
+  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &imp, 0, NULL, g1);
   for (int c = 0; c < 3; c++) assert_true(g0[c] == g1[c]);
   /* along the wall (n = +x): no change */
   f->v[1][a] = 0.3;
-  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, sv.impedance, 0, NULL, g1);
+  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &imp, 0, NULL, g1);
   for (int c = 0; c < 3; c++) assert_true(g0[c] == g1[c]);
   /* receding from it: no change */
   f->v[0][a] = 0.2;
-  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, sv.impedance, 0, NULL, g1);
+  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &imp, 0, NULL, g1);
   for (int c = 0; c < 3; c++) assert_true(g0[c] == g1[c]);
   /* approaching it obliquely: the identity with raised wall values, and a harder push */
   f->v[0][a] = -0.2;
-  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, sv.impedance, 0, NULL, g1);
+  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &imp, 0, NULL, g1);
   double *praised[SPH_NKINDS];
   for (int k = 0; k < SPH_NKINDS; k++) {
     const size_t n = s->part[k].n;
@@ -244,12 +251,54 @@ static void test_wall_impedance(void **state) {
   sph_solver_free(&sv);
 }
 
+/* numerics.wall_impedance: contact. The term acts on a particle closing in on an element within
+ * reach, weighted by ω = 1 − d/reach (d its distance from the element's plane): with the default
+ * reach 0.75Δr the first column (Δr from the left wall) gets the plain result, same bits; with a
+ * reach of 4Δr columns 1–3 get 3/4, 1/2 and 1/4 of the acoustic form's raise (the pressure
+ * gradient is linear in the raised wall values: g = g_plain + ω (g_acoustic − g_plain)). */
+static void test_wall_impedance_contact(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_config cfg;
+  struct sph_solver sv;
+  impedance_box(&sv, &cfg, SPH_IMPEDANCE_CONTACT);
+  assert_true(cfg.wall_impedance_reach == 0.75); /* as the case file's default (fixture) */
+  struct sph_system *s = &sv.sys;
+  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double dr = s->dr;
+  const struct sph_op op = {s, &sv.kernel, &sv.nb};
+  const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
+  const struct sph_wall_impedance acoustic = {sv.impedance, 0.0};
+  const struct sph_wall_impedance near = {sv.impedance, cfg.wall_impedance_reach * dr};
+  const struct sph_wall_impedance far = {sv.impedance, 4.0 * dr};
+  for (int col = 0; col < 3; col++) { /* fifth row, columns 1–3, approaching the left wall */
+    const size_t a = (size_t)(4 * NX + col);
+    f->v[0][a] = -0.2;
+    double g0[3], ga[3], gn[3], gf[3];
+    sph_op_grad_pressure(&op, cfg.grad_k, pk, a, NULL, 0, NULL, g0);
+    sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &acoustic, 0, NULL, ga);
+    sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &near, 0, NULL, gn);
+    sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &far, 0, NULL, gf);
+    assert_true(fabs(ga[0] - g0[0]) > 1e-3 * fabs(g0[0])); /* the acoustic form acts on each */
+    const double omega = 0.75 - 0.25 * col, scale = fabs(ga[0] - g0[0]);
+    for (int c = 0; c < 2; c++) {
+      assert_true(gn[c] == g0[c]);
+      assert_true(fabs(gf[c] - (g0[c] + omega * (ga[c] - g0[c]))) <= 1e-12 * scale);
+    }
+    print_message(
+        "contact impedance, column %d: a_x plain %+.3f, acoustic %+.3f, reach "
+        "0.75 dr %+.3f, reach 4 dr %+.3f m/s^2\n",
+        col + 1, -g0[0] / f->rho[a], -ga[0] / f->rho[a], -gn[0] / f->rho[a], -gf[0] / f->rho[a]);
+    f->v[0][a] = 0.0;
+  }
+  sph_solver_free(&sv);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_uniform_pressure),
-      cmocka_unit_test(test_no_pull_power),
-      cmocka_unit_test(test_contact_line),
-      cmocka_unit_test(test_wall_impedance),
+      cmocka_unit_test(test_uniform_pressure),       cmocka_unit_test(test_no_pull_power),
+      cmocka_unit_test(test_contact_line),           cmocka_unit_test(test_wall_impedance),
+      cmocka_unit_test(test_wall_impedance_contact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

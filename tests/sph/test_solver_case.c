@@ -37,6 +37,8 @@ static void test_defaults(void **state) {
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
+  assert_int_equal(cfg.wall_impedance, SPH_IMPEDANCE_CONTACT);
+  assert_true(cfg.wall_impedance_reach == 0.75);
   assert_true(cfg.settle == 0.0 && cfg.layer_equilibrium == 0);
   assert_int_equal(
       read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"
@@ -70,6 +72,9 @@ static void test_errors(void **state) {
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
+  expect("numerics: {wall_impedance: rigid}\n", "numerics.wall_impedance",
+         "none, acoustic, contact");
+  expect("numerics: {wall_impedance_reach: 0}\n", "numerics.wall_impedance_reach", "");
   expect("initial: {pressure: hydrostatic}\n", "initial.pressure", "gravity");
   expect("initial: {velocity: [1]}\n", "initial.velocity", "");
   expect("forces: [{name: a, wall: 2}]\n", "forces[0].wall", "");

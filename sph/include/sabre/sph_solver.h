@@ -147,6 +147,14 @@ enum sph_diffusion_speed { SPH_DSPEED_MAX = 0, SPH_DSPEED_ETA = 1 };
  *  step; or at the start of every step. The results are bitwise the same (docs/sph-solver.md §1).
  */
 enum sph_list_rebuild { SPH_LISTS_WHEN_NEEDED = 0, SPH_LISTS_EVERY_STEP = 1 };
+/** numerics.wall_impedance (operators/pressure.h): none; acoustic, ω = 1 for every fluid–wall
+ * pair; contact, ω = max(0, 1 − d/reach) for a particle at distance d > 0 from the element. */
+enum sph_wall_impedance_form {
+  SPH_IMPEDANCE_NONE = 0,
+  SPH_IMPEDANCE_ACOUSTIC = 1,
+  SPH_IMPEDANCE_CONTACT = 2
+};
+
 /** Hydrostatic correction of the Shepard vertex values: none, full g·r_vb, tangential M(83). */
 enum sph_vertex_hydro { SPH_VHYDRO_NONE = 0, SPH_VHYDRO_FULL = 1, SPH_VHYDRO_TANGENTIAL = 2 };
 /** Vertex masses m_v = ρ_v V_v: V_v the geometric volume of the wall layer nearest to the vertex
@@ -213,8 +221,11 @@ struct sph_config {
   int gravity_correction; /**< ϱ_ab of M(81): 0 none, 1 linear (ρ0/c0², as printed), 2 local
                                (ρ̄/c(ρ̄)², second-order exact for the Tait EOS) */
   int vertex_hydro;       /**< enum sph_vertex_hydro */
-  int wall_impedance;     /**< 1: the wall value of a fluid–wall pair is raised by ρ_a c_a |u_n|
-                               while the particle approaches the wall (docs/sph-solver.md §4) */
+  int wall_impedance;     /**< enum sph_wall_impedance_form: the wall value of a fluid–wall pair
+                               is raised by ω ρ_a c_a |u_n| while the particle approaches the wall
+                               (docs/sph-solver.md §4) */
+  double wall_impedance_reach;  /**< contact form: distance from a wall element within which the
+                                     impedance acts, ω = 1 − d/reach [Δr] */
   int open_gradient_difference; /**< 1 (numerics.open_gradient: difference; default symmetric): the
                                  * pressure gradient is exact for constants next to open
                                  * boundaries in proportion to their share of the wall terms

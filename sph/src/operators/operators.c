@@ -29,6 +29,13 @@ static double approach(const struct sph_parts *pa, size_t a, const struct sph_pa
   return nn > 0.0 ? un / sqrt(nn) : 0.0;
 }
 
+/* ω_ae of the contact form (operators/pressure.h) for a pair at distance d from the element's
+ * plane; 1 for the acoustic form (reach 0). */
+static double contact_weight(const struct sph_wall_impedance *imp, double d) {
+  if (imp->reach == 0.0) return 1.0;
+  return d > 0.0 ? fmax(0.0, 1.0 - d / imp->reach) : 0.0;
+}
+
 double sph_op_open_share(const struct sph_op *op, size_t a) {
   const struct sph_parts *ps = &op->sys->part[SPH_KIND_SEGMENT];
   const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
@@ -56,7 +63,7 @@ static double closing_vertex(const struct sph_parts *pa, size_t a, const struct 
  * g_fluid (NULL: none): the sum over the fluid pairs already formed by the caller (same pairs,
  * order and arithmetic); the sum then goes on over the vertices and segments only. */
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int no_pull, const double *impedance, int open_difference,
+                 int no_pull, const struct sph_wall_impedance *impedance, int open_difference,
                  const struct sph_vertex_layer *layer, const double *g_fluid, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
@@ -87,7 +94,15 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       double fb = f[kind][b];
       if (impedance && kind == SPH_KIND_VERTEX && !(pb->flags[b] & SPH_FLAG_OPEN)) {
         const double un = approach(pa, a, pb, b);
-        if (un < 0.0) fb -= impedance[a] * un;
+        if (un < 0.0) {
+          double d = 0.0, nn = 0.0; /* (r_a − r_v)·n̂_v */
+          for (int c = 0; c < 3; c++) {
+            d += pr.r[c] * pb->normal[c][b];
+            nn += pb->normal[c][b] * pb->normal[c][b];
+          }
+          d = nn > 0.0 ? d / sqrt(nn) : 0.0;
+          fb -= contact_weight(impedance, d) * impedance->z[a] * un;
+        }
       }
       double sum = ratio * fb + fa / ratio;
       if (no_pull && kind == SPH_KIND_VERTEX && sum < 0.0 &&
@@ -119,7 +134,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
     double fs = f[SPH_KIND_SEGMENT][j];
     if (impedance && !(ps->flags[j] & SPH_FLAG_OPEN)) { /* open values come from their solve */
       const double un = approach(pa, a, ps, j);
-      if (un < 0.0) fs -= impedance[a] * un;
+      if (un < 0.0) fs -= contact_weight(impedance, op->nb->dist_as[q]) * impedance->z[a] * un;
     }
     double t = ratio * fs + fa / ratio;
     if (no_pull && t < 0.0 && approach(pa, a, ps, j) <= 0.0) continue;
@@ -136,14 +151,14 @@ void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, int open_difference,
+                          size_t a, const struct sph_wall_impedance *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]) {
   grad(op, k, p, a, 1, impedance, open_difference, layer, NULL, out);
 }
 
 void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
                                 const double *const p[SPH_NKINDS], size_t a,
-                                const double *impedance, int open_difference,
+                                const struct sph_wall_impedance *impedance, int open_difference,
                                 const struct sph_vertex_layer *layer, const double g_fluid[3],
                                 double out[3]) {
   grad(op, k, p, a, 1, impedance, open_difference, layer, g_fluid, out);

@@ -26,13 +26,14 @@
  * receding particle is held back as M(37) holds it. Fluid–fluid pairs are kept as they are.
  * Equals sph_op_grad() wherever the wall pressure sums are ≥ 0 (still water below its surface).
  *
- * impedance (NULL: none) [kg/m²/s], per fluid particle: Z_a = ρ_a c_a. When given, the wall value
- * of a pair whose fluid particle approaches the element, u_n = (v_a − v_w)·n < 0 (n the element's
- * unit normal into the fluid; a vertex's normal normalised), is raised by −Z_a u_n: the pressure
- * behind the acoustic wave that brings the relative normal velocity to zero, the linearised
- * boundary Riemann problem with the wall's normal velocity imposed (docs/sph-solver.md §4). A
- * receding particle sees the wall value unchanged. Open elements (SPH_FLAG_OPEN) keep the values of
- * their own Riemann solve.
+ * impedance (NULL: none; struct sph_wall_impedance below). When given, the wall value of a pair
+ * whose fluid particle approaches the element, u_n = (v_a − v_w)·n < 0 (n the element's unit
+ * normal into the fluid; a vertex's normal normalised), is raised by −ω_ae Z_a u_n, Z_a = ρ_a c_a:
+ * the pressure behind the acoustic wave that brings the relative normal velocity to zero, the
+ * linearised boundary Riemann problem with the wall's normal velocity imposed (docs/sph-solver.md
+ * §4). ω_ae = 1 for every pair (acoustic form), or the contact weight of a particle close to the
+ * element (contact form, below). A receding particle sees the wall value unchanged. Open elements
+ * (SPH_FLAG_OPEN) keep the values of their own Riemann solve.
  *
  * open_difference (numerics.open_gradient: difference): next to an open boundary the operator is
  * made exact for a constant field in proportion to χ_a, the share of the wet open segments
@@ -52,8 +53,22 @@ struct sph_vertex_layer {
   const double *vol;
   const double *const *x;
 };
+
+/**
+ * The wall impedance of sph_op_grad_pressure. z: per fluid particle, Z_a = ρ_a c_a [kg/m²/s].
+ * reach [m]: 0 for the acoustic form (ω_ae = 1 for every pair); > 0 for the contact form,
+ * ω_ae = max(0, 1 − d_ae/reach) for d_ae > 0 and 0 for d_ae ≤ 0, d_ae = (r_a − r_e)·n_e the
+ * distance of particle a from the element's plane (a segment's; for a vertex the plane through it
+ * normal to its normal): the term acts on a particle that closes in on the element within reach,
+ * in full at contact, and not on the fluid further off (which meets the fluid layer in front of
+ * it, not the wall) nor on a particle behind the plane (round a convex edge).
+ */
+struct sph_wall_impedance {
+  const double *z;
+  double reach;
+};
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const double *impedance, int open_difference,
+                          size_t a, const struct sph_wall_impedance *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]);
 
 /* χ_a of open_difference above. */
@@ -69,7 +84,7 @@ double sph_op_open_share(const struct sph_op *op, size_t a);
  */
 void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
                                 const double *const p[SPH_NKINDS], size_t a,
-                                const double *impedance, int open_difference,
+                                const struct sph_wall_impedance *impedance, int open_difference,
                                 const struct sph_vertex_layer *layer, const double g_fluid[3],
                                 double out[3]);
 /*

@@ -288,8 +288,11 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const hydros[] = {"none", "full", "tangential", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.vertex_hydrostatic", hydros, SPH_VHYDRO_FULL,
                           &cfg->vertex_hydro));
-  static const char *const impedances[] = {"none", "acoustic", NULL};
-  TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, 0, &cfg->wall_impedance));
+  static const char *const impedances[] = {"none", "acoustic", "contact", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, SPH_IMPEDANCE_CONTACT,
+                          &cfg->wall_impedance));
+  TRY(cmn_case_opt_double(c, "numerics.wall_impedance_reach", 0.75, 1e-3, 4.0,
+                          &cfg->wall_impedance_reach));
   TRY(cmn_case_opt_double(c, "numerics.artificial_viscosity", 0.0, 0.0, INFINITY,
                           &cfg->artificial_viscosity));
   static const char *const ograds[] = {"symmetric", "difference", NULL};

@@ -464,6 +464,9 @@ static void forces_impl(struct sph_solver *sv) {
   const struct sph_vertex_layer layer = {
       use_layer ? sv->open->layer_vol : NULL,
       use_layer ? (const double *const *)sv->open->layer_x : NULL};
+  const struct sph_wall_impedance imp = {
+      sv->impedance,
+      sv->cfg.wall_impedance == SPH_IMPEDANCE_CONTACT ? sv->cfg.wall_impedance_reach * s->dr : 0.0};
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
@@ -478,9 +481,8 @@ static void forces_impl(struct sph_solver *sv) {
     const double fc = diffo ? sph_op_open_share(&op, a) * pk[SPH_KIND_FLUID][a] : 0.0;
     sv->diff[a] = fluid_pairs(sv, a, fc, viscous, gf, lf);
     /* no wall pulls an approaching particle; with numerics.wall_impedance, harder push on it */
-    sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a,
-                               sv->cfg.wall_impedance ? sv->impedance : NULL, diffo,
-                               use_layer ? &layer : NULL, gf, gp);
+    sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? &imp : NULL,
+                               diffo, use_layer ? &layer : NULL, gf, gp);
     if (viscous) sph_op_lap_walls(&op, muk, (const double *const(*)[3])vel, &shear, a, lf, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

@@ -253,16 +253,17 @@ static void test_wall_impedance(void **state) {
 
 /* numerics.wall_impedance: contact. The term acts on a particle closing in on an element within
  * reach, weighted by ω = 1 − d/reach (d its distance from the element's plane): with the default
- * reach 0.75Δr the first column (Δr from the left wall) gets the plain result, same bits; with a
- * reach of 4Δr columns 1–3 get 3/4, 1/2 and 1/4 of the acoustic form's raise (the pressure
- * gradient is linear in the raised wall values: g = g_plain + ω (g_acoustic − g_plain)). */
+ * reach Δr the first column (Δr from the left wall, at the reach) gets the plain result (to
+ * 10⁻¹², the weight 0 up to round-off), the second and third the same bits; with a reach of 4Δr
+ * columns 1–3 get 3/4, 1/2 and 1/4 of the acoustic form's raise (the pressure gradient is linear in
+ * the raised wall values: g = g_plain + ω (g_acoustic − g_plain)). */
 static void test_wall_impedance_contact(void **state) {
   (void)state;
   sabre_fp_traps_on();
   struct sph_config cfg;
   struct sph_solver sv;
   impedance_box(&sv, &cfg, SPH_IMPEDANCE_CONTACT);
-  assert_true(cfg.wall_impedance_reach == 0.75); /* as the case file's default (fixture) */
+  assert_true(cfg.wall_impedance_reach == 1.0); /* as the case file's default (fixture) */
   struct sph_system *s = &sv.sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double dr = s->dr;
@@ -282,12 +283,13 @@ static void test_wall_impedance_contact(void **state) {
     assert_true(fabs(ga[0] - g0[0]) > 1e-3 * fabs(g0[0])); /* the acoustic form acts on each */
     const double omega = 0.75 - 0.25 * col, scale = fabs(ga[0] - g0[0]);
     for (int c = 0; c < 2; c++) {
-      assert_true(gn[c] == g0[c]);
+      if (col == 0) assert_true(fabs(gn[c] - g0[c]) <= 1e-12 * scale);
+      if (col > 0) assert_true(gn[c] == g0[c]);
       assert_true(fabs(gf[c] - (g0[c] + omega * (ga[c] - g0[c]))) <= 1e-12 * scale);
     }
     print_message(
         "contact impedance, column %d: a_x plain %+.3f, acoustic %+.3f, reach "
-        "0.75 dr %+.3f, reach 4 dr %+.3f m/s^2\n",
+        "dr %+.3f, reach 4 dr %+.3f m/s^2\n",
         col + 1, -g0[0] / f->rho[a], -ga[0] / f->rho[a], -gn[0] / f->rho[a], -gf[0] / f->rho[a]);
     f->v[0][a] = 0.0;
   }

@@ -126,7 +126,7 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->open_gradient_difference = 0;
   cfg->dt_max = INFINITY;
   cfg->wall_impedance = SPH_IMPEDANCE_CONTACT; /* the case file's defaults */
-  cfg->wall_impedance_reach = 0.75;
+  cfg->wall_impedance_reach = 1.0;
   cfg->density_band[0] = 0.5;
   cfg->density_band[1] = 1.5;
   cfg->t_end = 1.0;

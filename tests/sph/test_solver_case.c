@@ -38,7 +38,7 @@ static void test_defaults(void **state) {
   assert_true(isnan(cfg.free_surface));
   assert_true(cfg.density_band[0] == 0.5 && cfg.density_band[1] == 1.5);
   assert_int_equal(cfg.wall_impedance, SPH_IMPEDANCE_CONTACT);
-  assert_true(cfg.wall_impedance_reach == 0.75);
+  assert_true(cfg.wall_impedance_reach == 1.0);
   assert_true(cfg.settle == 0.0 && cfg.layer_equilibrium == 0);
   assert_int_equal(
       read_case("gravity: [0, -9.81]\nforces: [{name: right, wall: 1, edges: [2, 3]}]\n"

@@ -291,7 +291,7 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const impedances[] = {"none", "acoustic", "contact", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, SPH_IMPEDANCE_CONTACT,
                           &cfg->wall_impedance));
-  TRY(cmn_case_opt_double(c, "numerics.wall_impedance_reach", 0.75, 1e-3, 4.0,
+  TRY(cmn_case_opt_double(c, "numerics.wall_impedance_reach", 1.0, 1e-3, 4.0,
                           &cfg->wall_impedance_reach));
   TRY(cmn_case_opt_double(c, "numerics.artificial_viscosity", 0.0, 0.0, INFINITY,
                           &cfg->artificial_viscosity));

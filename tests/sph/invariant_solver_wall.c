@@ -293,6 +293,44 @@ static void test_wall_impedance_contact(void **state) {
         col + 1, -g0[0] / f->rho[a], -ga[0] / f->rho[a], -gn[0] / f->rho[a], -gf[0] / f->rho[a]);
     f->v[0][a] = 0.0;
   }
+  /* Behind an element's plane the weight is 0: with the segments' plane distances of a pair list
+   * negated, the first column approaching obliquely gets the raise of its vertex pairs only,
+   * each by ω = 1 − d/reach of its own plane distance (the identity with raised vertex values). */
+  const size_t a = (size_t)(4 * NX);
+  f->v[0][a] = -0.2;
+  f->v[1][a] = 0.1;
+  const struct sph_nlist *ls = &sv.nb.list[SPH_KIND_SEGMENT], *lv = &sv.nb.list[SPH_KIND_VERTEX];
+  for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) sv.nb.dist_as[q] *= -1.0;
+  double gb[3], g2[3];
+  sph_op_grad_pressure(&op, cfg.grad_k, pk, a, &far, 0, NULL, gb);
+  for (size_t q = ls->offset[a]; q < ls->offset[a + 1]; q++) sv.nb.dist_as[q] *= -1.0;
+  const struct sph_parts *pv = &s->part[SPH_KIND_VERTEX];
+  double *raised = malloc((pv->n + 1) * sizeof(double));
+  for (size_t i = 0; i < pv->n; i++) raised[i] = pv->p[i];
+  int weighted = 0;
+  for (size_t q = lv->offset[a]; q < lv->offset[a + 1]; q++) {
+    const size_t j = lv->index[q];
+    double un = 0.0, d = 0.0, nn = 0.0;
+    for (int c = 0; c < 3; c++) {
+      un += (f->v[c][a] - pv->v[c][j]) * pv->normal[c][j];
+      d += (f->x[c][a] - pv->x[c][j]) * pv->normal[c][j];
+      nn += pv->normal[c][j] * pv->normal[c][j];
+    }
+    un /= sqrt(nn);
+    d /= sqrt(nn);
+    const double w = d > 0.0 ? fmax(0.0, 1.0 - d / far.reach) : 0.0;
+    if (un < 0.0 && w > 0.0 && w < 1.0) weighted++;
+    if (un < 0.0) raised[j] -= w * sv.impedance[a] * un;
+  }
+  assert_true(weighted >= 3);
+  const double *pr[SPH_NKINDS] = {pk[SPH_KIND_FLUID], raised, pk[SPH_KIND_SEGMENT]};
+  sph_op_grad_pressure(&op, cfg.grad_k, pr, a, NULL, 0, NULL, g2);
+  for (int c = 0; c < 2; c++) assert_rel(gb[c], g2[c], 1e-13);
+  print_message(
+      "contact impedance behind the segments' planes: a = (%+.3f, %+.3f) m/s^2, %d "
+      "vertex pairs weighted\n",
+      -gb[0] / f->rho[a], -gb[1] / f->rho[a], weighted);
+  free(raised);
   sph_solver_free(&sv);
 }
 

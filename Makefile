@@ -2,7 +2,7 @@
 #   make run    install dependencies, configure, build, run the showcase, write its output and plot
 #   make test   install dependencies, configure, build, run the whole ctest suite
 #   make bench  build and run the benchmarks (figures on stdout)
-#   make compare  SPH against fv1d on the 1D pipe problems of cases/compare (tables and figures)
+#   make compare  SPH against fv1d on the pipe and channel problems of cases/compare (tables, figures)
 #   make sanitize  unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (build/asan/)
 #   make format / make format-check   clang-format the sources / check they are formatted
 BUILD ?= build
@@ -40,7 +40,7 @@ bench: build
 	cmake --build $(BUILD) --target bench
 
 compare: build
-	@for p in water_hammer acoustic_outlet pipe_startup; do \
+	@for p in water_hammer acoustic_outlet pipe_startup water_hammer_2d; do \
 	  /usr/bin/python3 cases/compare/compare.py cases/compare/$$p/problem.yaml --build $(BUILD) \
 	    --output $(BUILD)/cases/compare/$$p || exit 1; done
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""SPH against fv1d on the same 1D pipe problem: the design's own cross-check.
+"""SPH against fv1d on the same pipe problem: the design's own cross-check.
 
 One problem file (problem.yaml in each directory next to this script) gives the fluid, the pipe,
 the initial state, the two ends and the times to compare. This script writes from it a case file
@@ -9,6 +9,9 @@ the same instants), and prints, for each compare time and SPH resolution, the L1
 p and u along the pipe,
 
     L1(f) = (1/L) Σ_a |f_a − f_fv1d(x_a)| Δx_a       (Δx_a: the particle's share of the pipe)
+
+(in a 2D channel, `sph.width`, Δx_a = L V_a / Σ_b V_b with V = m/ρ: the L1 difference over the
+whole channel, across its width as well as along it)
 
 as fractions of the problem's jump (`jump.p`, `jump.u`), and their order between consecutive
 resolutions, log2(L1(Δr) / L1(Δr/2)). With `reflection` in the problem it also prints the largest
@@ -37,7 +40,9 @@ Problem keys (all required unless a default is given):
   jump: p, u                the scales of the L1 differences [Pa, m/s]
   sph: dr [list], h_over_dr (2), diffusion (ferrari), and sabre-sph's numerics.open_gradient,
                             numerics.diffusion_speed and numerics.eta (their defaults when
-                            absent)
+                            absent); width [m] (absent: SPH in 1D): SPH in a 2D channel of that
+                            width between free-slip walls at y = 0 and y = width, its x faces
+                            open; repack (0): sabre-sph's repack.steps
   fv1d: cells, flux (godunov), reconstruction (mc)
   reflection (optional): x_min, times, amplitude
   criteria: l1 (fraction of the jump at the finest Δr, every compare time), falling (true: the
@@ -112,17 +117,23 @@ def write_sph(prob, problem_dir, run_dir, dr):
     sph = prob.get("sph", {})
     opens = [n for n, side in (("x-", "left"), ("x+", "right"))
              if prob[side]["type"] == "open"]
+    width = channel_width(prob)
+    if width is None:  # a 1D pipe
+        lo, hi, walls = [0.0], [L], {"type": "interval", "lo": [0.0], "hi": [L], "open": opens}
+    else:  # a 2D channel between free-slip walls at y = 0 and y = width
+        lo, hi = [0.0, 0.0], [L, width]
+        walls = {"type": "box", "lo": list(lo), "hi": list(hi), "open": opens}
     case = {
         "geometry": {
-            "dimension": 1, "dr": dr, "h_over_dr": float(sph.get("h_over_dr", 2)),
+            "dimension": len(lo), "dr": dr, "h_over_dr": float(sph.get("h_over_dr", 2)),
             "first_row": 1,
-            "walls": [{"type": "interval", "lo": [0.0], "hi": [L], "open": opens}],
-            "fluid": [{"type": "box", "lo": [0.0], "hi": [L]}],
+            "walls": [walls],
+            "fluid": [{"type": "box", "lo": lo, "hi": hi}],
         },
         "fluid": {"rho0": float(fl["rho0"]), "c0": float(fl["c0"]), "xi": float(fl["xi"]),
                   "nu": 0.0},
         "initial": {"pressure": str(prob["initial"]["p"]),
-                    "velocity": [str(prob["initial"]["u"])]},
+                    "velocity": [str(prob["initial"]["u"])] + ["0"] * (len(lo) - 1)},
         "numerics": {"diffusion": sph.get("diffusion", "ferrari")},
         "time": {"end": float(prob["time"]["end"]),
                  "output_interval": float(prob["time"]["interval"])},
@@ -132,14 +143,16 @@ def write_sph(prob, problem_dir, run_dir, dr):
             case["numerics"][key] = str(sph[key])
     if "eta" in sph:
         case["numerics"]["eta"] = float(sph["eta"])
+    if repack_steps(prob) > 0:
+        case["repack"] = {"steps": repack_steps(prob)}
     groups = []
-    for edge, side, sign in ((1, "left", 1.0), (2, "right", -1.0)):
+    for edge, face, side, sign in ((1, "x-", "left", 1.0), (2, "x+", "right", -1.0)):
         end = prob[side]
         if end["type"] != "open":
             continue
         key, val = sph_signal(end, sign, problem_dir, run_dir, side)
-        groups.append({"name": side, "wall": 0, "edges": [edge], "impose": end["impose"],
-                       key: val})
+        where = {"edges": [edge]} if width is None else {"faces": [face]}
+        groups.append({"name": side, "wall": 0, **where, "impose": end["impose"], key: val})
     if groups:
         case["open_boundaries"] = groups
     path = os.path.join(run_dir, "sph.yaml")
@@ -186,8 +199,29 @@ def run(cmd, log):
         fail(f"{' '.join(cmd)} failed (exit {r.returncode}); end of {log}:\n{tail}")
 
 
-def sph_profiles(run_dir):
-    """{time: (x, p, u)} of the fluid particles, sorted by x."""
+def channel_width(prob):
+    """The width of the 2D channel of `sph.width` [m], or None for a 1D pipe."""
+    w = (prob.get("sph") or {}).get("width")
+    if w is None:
+        return None
+    if not isinstance(w, (int, float)) or isinstance(w, bool) or not w > 0.0:
+        fail(f"sph.width: expected a width > 0 (m), got {w!r}")
+    return float(w)
+
+
+def repack_steps(prob):
+    """sabre-sph's repack.steps from `sph.repack` (0 when absent)."""
+    n = (prob.get("sph") or {}).get("repack", 0)
+    if not isinstance(n, int) or isinstance(n, bool) or n < 0:
+        fail(f"sph.repack: expected a number of steps >= 0, got {n!r}")
+    return n
+
+
+def sph_profiles(run_dir, L, width):
+    """{time: (x, p, u, s)} of the fluid particles, sorted by x; s is each particle's share of the
+    length L: in 1D half the gaps to its neighbours (the ends to the walls), in 2D L times its
+    volume m/rho over the fluid's, so that (1/L) sum s |f - f_ref(x)| is the L1 difference over
+    the channel's cross-section as well as along it."""
     import numpy as np
     out = {}
     for t, path in sabre_output.read_pvd(os.path.join(run_dir, "particles.pvd"), 0):
@@ -196,7 +230,13 @@ def sph_profiles(run_dir):
         p = np.asarray(d["pressure"])
         u = np.asarray(d["velocity"]).reshape(-1, 3)[:, 0]
         o = np.argsort(x)
-        out[t] = (x[o], p[o], u[o])
+        x, p, u = x[o], p[o], u[o]
+        if width is None:
+            s = shares(x, L)
+        else:
+            vol = (np.asarray(d["mass"]) / np.asarray(d["density"]))[o]
+            s = L * vol / np.sum(vol)
+        out[t] = (x, p, u, s)
     return out
 
 
@@ -250,13 +290,15 @@ def main(argv):
         fail(f"{problem}: unknown key(s) {', '.join(unknown)} (expected: {', '.join(sorted(known))})")
     for key, allowed in (("criteria", {"l1", "falling", "reflection"}),
                          ("sph", {"dr", "h_over_dr", "diffusion", "open_gradient", "diffusion_speed",
-                                  "eta"}),
+                                  "eta", "width", "repack"}),
                          ("fv1d", {"cells", "flux", "reconstruction"}),
                          ("reflection", {"x_min", "times", "amplitude"})):
         extra = sorted(set(prob.get(key) or {}) - allowed)
         if extra:
             fail(f"{problem}: {key}: unknown key(s) {', '.join(extra)} "
                  f"(expected: {', '.join(sorted(allowed))})")
+    width = channel_width(prob)
+    repack_steps(prob)  # checked before anything is written
     name = prob["name"]
     build = opts["--build"] or os.environ.get("SABRE_BUILD") or \
         os.path.join(os.path.dirname(os.path.dirname(HERE)), "build")
@@ -289,7 +331,7 @@ def main(argv):
         shutil.rmtree(os.path.join(rd, "run"), ignore_errors=True)
         run([sph_exe, "run", case, "--output", os.path.join(rd, "run"), "--threads", "1"],
             os.path.join(rd, "sph.log"))
-        prof = sph_profiles(os.path.join(rd, "run"))
+        prof = sph_profiles(os.path.join(rd, "run"), L, width)
         picked = {}
         for t in compare:
             ts = min((s for s in prof if s >= t - 1e-12), default=None)
@@ -309,7 +351,8 @@ def main(argv):
 
     # L1 differences
     rows = []
-    print(f"{name}: SPH (1D, h = {float(prob['sph'].get('h_over_dr', 2)):g} dr) against fv1d "
+    geom = "1D" if width is None else f"2D channel {width:g} m wide, free-slip walls"
+    print(f"{name}: SPH ({geom}, h = {float(prob['sph'].get('h_over_dr', 2)):g} dr) against fv1d "
           f"({int(prob['fv1d']['cells'])} cells); L1 of p and u as fractions of the jump "
           f"(p {jp:g} Pa, u {ju:g} m/s)")
     print(f"{'t [s]':>8} {'dr [m]':>9} {'t_SPH [s]':>10} {'L1(p)':>9} {'L1(u)':>9} "
@@ -320,9 +363,8 @@ def main(argv):
         for dr in drs:
             prof, picked = sph[dr]
             ts = picked[t]
-            x, p, u = prof[ts]
+            x, p, u, w = prof[ts]
             rx, rp, ru = ref[ts]
-            w = shares(x, L)
             ep = float(np.sum(w * np.abs(p - np.interp(x, rx, rp))) / L / jp)
             eu = float(np.sum(w * np.abs(u - np.interp(x, rx, ru))) / L / ju)
             l1[(t, dr)] = (ep, eu)
@@ -361,7 +403,7 @@ def main(argv):
                 if t not in picked:
                     fail(f"reflection.times: {t} must be among the compare times")
                 ts = picked[t]
-                x, p, u = prof[ts]
+                x, p, u, _ = prof[ts]
                 rx, rp, ru = ref[ts]
                 k = (x >= xm) & (x <= L - 2.0 * h)
                 pl = 0.5 * (p[k] - z * u[k])
@@ -413,7 +455,7 @@ def plot(prob, out, sph, ref, compare, drs, l1):
     colours = plt.cm.viridis([i / max(1, len(compare) - 1) for i in range(len(compare))])
     for t, c in zip(compare, colours):
         ts = picked[t]
-        x, p, u = prof[ts]
+        x, p, u, _ = prof[ts]
         rx, rp, ru = ref[ts]
         ax[0].plot(rx, rp, color=c, lw=1.2, label=f"t = {t:g} s")
         ax[0].plot(x, p, ".", color=c, ms=2.5)

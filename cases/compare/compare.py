@@ -143,8 +143,9 @@ def write_sph(prob, problem_dir, run_dir, dr):
             case["numerics"][key] = str(sph[key])
     if "eta" in sph:
         case["numerics"]["eta"] = float(sph["eta"])
-    if repack_steps(prob) > 0:
-        case["repack"] = {"steps": repack_steps(prob)}
+    steps = repack_steps(prob)
+    if steps > 0:
+        case["repack"] = {"steps": steps}
     groups = []
     for edge, face, side, sign in ((1, "x-", "left", 1.0), (2, "x+", "right", -1.0)):
         end = prob[side]

@@ -75,6 +75,8 @@ static void test_errors(void **state) {
   expect("numerics: {wall_impedance: rigid}\n", "numerics.wall_impedance",
          "none, acoustic, contact");
   expect("numerics: {wall_impedance_reach: 0}\n", "numerics.wall_impedance_reach", "");
+  expect("numerics: {wall_impedance: acoustic, wall_impedance_reach: 2}\n",
+         "numerics.wall_impedance_reach", "contact form only");
   expect("initial: {pressure: hydrostatic}\n", "initial.pressure", "gravity");
   expect("initial: {velocity: [1]}\n", "initial.velocity", "");
   expect("forces: [{name: a, wall: 2}]\n", "forces[0].wall", "");

@@ -291,8 +291,12 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   static const char *const impedances[] = {"none", "acoustic", "contact", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.wall_impedance", impedances, SPH_IMPEDANCE_CONTACT,
                           &cfg->wall_impedance));
+  const int reach_given = cmn_case_has(c, "numerics.wall_impedance_reach"); /* before its default */
   TRY(cmn_case_opt_double(c, "numerics.wall_impedance_reach", 1.0, 1e-3, 4.0,
                           &cfg->wall_impedance_reach));
+  if (cfg->wall_impedance != SPH_IMPEDANCE_CONTACT && reach_given)
+    return cmn_case_fail(c, "numerics.wall_impedance_reach",
+                         "applies to the contact form only (numerics.wall_impedance: contact)");
   TRY(cmn_case_opt_double(c, "numerics.artificial_viscosity", 0.0, 0.0, INFINITY,
                           &cfg->artificial_viscosity));
   static const char *const ograds[] = {"symmetric", "difference", NULL};

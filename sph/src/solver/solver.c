@@ -721,7 +721,7 @@ int sph_solver_repack(struct sph_solver *sv, long steps, char *msg, size_t msgle
   const double nu = sv->cfg.nu;
   const int impedance = sv->cfg.wall_impedance;
   sv->cfg.nu = 0.0;
-  sv->cfg.wall_impedance = 0;
+  sv->cfg.wall_impedance = SPH_IMPEDANCE_NONE;
   for (size_t a = 0; a < n; a++) {
     f->rho[a] = rho_r;
     f->mass[a] = rho_r * vol;

@@ -39,7 +39,8 @@ Problem keys (all required unless a default is given):
   compare: [t...]           compare times, each a multiple of time.interval
   jump: p, u                the scales of the L1 differences [Pa, m/s]
   sph: dr [list], h_over_dr (2), diffusion (ferrari), and sabre-sph's numerics.open_gradient,
-                            numerics.diffusion_speed and numerics.eta (their defaults when
+                            numerics.diffusion_speed, numerics.eta, numerics.no_pull and
+                            numerics.wall_vertex_mass (their defaults when
                             absent); width [m] (absent: SPH in 1D): SPH in a 2D channel of that
                             width between free-slip walls at y = 0 and y = width, its x faces
                             open; repack (0): sabre-sph's repack.steps
@@ -138,7 +139,7 @@ def write_sph(prob, problem_dir, run_dir, dr):
         "time": {"end": float(prob["time"]["end"]),
                  "output_interval": float(prob["time"]["interval"])},
     }
-    for key in ("open_gradient", "diffusion_speed"):
+    for key in ("open_gradient", "diffusion_speed", "no_pull", "wall_vertex_mass"):
         if key in sph:
             case["numerics"][key] = str(sph[key])
     if "eta" in sph:
@@ -291,7 +292,7 @@ def main(argv):
         fail(f"{problem}: unknown key(s) {', '.join(unknown)} (expected: {', '.join(sorted(known))})")
     for key, allowed in (("criteria", {"l1", "falling", "reflection"}),
                          ("sph", {"dr", "h_over_dr", "diffusion", "open_gradient", "diffusion_speed",
-                                  "eta", "width", "repack"}),
+                                  "eta", "width", "repack", "no_pull", "wall_vertex_mass"}),
                          ("fv1d", {"cells", "flux", "reconstruction"}),
                          ("reflection", {"x_min", "times", "amplitude"})):
         extra = sorted(set(prob.get(key) or {}) - allowed)

@@ -25,6 +25,8 @@ static const struct sph_field fields[] = {
     FIELD("grad_gamma", SPH_FIELD_DOUBLE, 3, grad_gamma, F | V),
     FIELD("normal", SPH_FIELD_DOUBLE, 3, normal, V | S),
     FIELD("measure", SPH_FIELD_DOUBLE, 1, measure, S),
+    FIELD("volume", SPH_FIELD_DOUBLE, 1, volume, V),
+    FIELD("wall_mass", SPH_FIELD_DOUBLE, 1, wall_mass, V),
     FIELD("vertex", SPH_FIELD_SIZE, 3, vertex, S),
 };
 #undef FIELD

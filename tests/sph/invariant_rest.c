@@ -36,7 +36,7 @@ static void defect(const struct sph_solver *sv, const double (*box)[3], const ch
     one[k] = malloc((s->part[k].n + 1) * sizeof(double));
     for (size_t i = 0; i < s->part[k].n; i++) one[k][i] = 1.0;
   }
-  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const struct sph_op op = {s, &sv->kernel, &sv->nb, 0};
   FILE *csv = NULL;
   const char *dir = getenv("SABRE_TEST_OUTPUT");
   if (dir) {

@@ -54,7 +54,7 @@ static void test_uniform_pressure(void **state) {
     uniform_box(&sv, &cfg, p0);
     struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
     const double *pk[SPH_NKINDS] = {sv.sys.part[0].p, sv.sys.part[1].p, sv.sys.part[2].p};
-    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb, 0};
     /* the first column (next to the left wall, n = +x), rows 2 .. NY − 3 (off the corners) */
     for (int j = 2; j < NY - 2; j++) {
       const size_t a = (size_t)(j * NX);
@@ -93,9 +93,9 @@ static void test_uniform_pressure(void **state) {
 
 /* The pulls left out never do negative work: at a uniform negative pressure with random
  * velocities, v_a·(a_a − a_a^M37) ≤ 0 at every particle and < 0 at some; particles next to a wall
- * that move straight away from it keep M(37) to the last bit. */
-static void test_no_pull_power(void **state) {
-  (void)state;
+ * that move straight away from it keep M(37) to the last bit. normal: numerics.no_pull: normal
+ * (sph_op.no_pull_normal), else radial. */
+static void no_pull_power(int normal) {
   sabre_fp_traps_on();
   struct sph_config cfg;
   struct sph_solver sv;
@@ -113,7 +113,7 @@ static void test_no_pull_power(void **state) {
     f->v[1][(size_t)(j * NX)] = 0.0;
   }
   const double *pk[SPH_NKINDS] = {sv.sys.part[0].p, sv.sys.part[1].p, sv.sys.part[2].p};
-  const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+  const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb, normal};
   int cut = 0, kept = 0;
   double least = 0.0;
   for (size_t a = 0; a < f->n; a++) {
@@ -131,11 +131,60 @@ static void test_no_pull_power(void **state) {
     least = fmin(least, pw);
   }
   print_message(
-      "no pull: %d of %zu particles lose power (least %.3g W/kg), %d next to a wall "
+      "no pull (%s): %d of %zu particles lose power (least %.3g W/kg), %d next to a wall "
       "keep M(37) exactly\n",
-      cut, f->n, least, kept);
+      normal ? "normal" : "radial", cut, f->n, least, kept);
   assert_true(cut > 10);
   assert_true(kept >= NY - 8);
+  sph_solver_free(&sv);
+}
+
+static void test_no_pull_power(void **state) {
+  (void)state;
+  no_pull_power(0);
+}
+
+static void test_no_pull_power_normal(void **state) {
+  (void)state;
+  no_pull_power(1);
+}
+
+/* Flow along a wall in tension (docs/sph-solver.md §4, "Flow along a wall", item 3): with
+ * numerics.no_pull: normal only the pull's part along each vertex's normal is left out, so a
+ * first-column particle moving along the wall keeps M(37)'s tangential component to the last bit
+ * (the side wall's vertex normals are ±x exactly) and is still not pulled into the wall; the
+ * radial rule (the default) leaves out the vertices ahead of it, and the ones behind push it
+ * back: its tangential acceleration opposes the motion. */
+static void test_no_pull_tangential(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  struct sph_config cfg;
+  struct sph_solver sv;
+  uniform_box(&sv, &cfg, -412.5);
+  struct sph_parts *f = &sv.sys.part[SPH_KIND_FLUID];
+  const double *pk[SPH_NKINDS] = {sv.sys.part[0].p, sv.sys.part[1].p, sv.sys.part[2].p};
+  const struct sph_op normal = {&sv.sys, &sv.kernel, &sv.nb, 1};
+  const struct sph_op radial = {&sv.sys, &sv.kernel, &sv.nb, 0};
+  for (int j = 4; j < NY - 4; j++) { /* out of the floor's and the lid's reach */
+    const size_t a = (size_t)(j * NX);
+    for (int sign = -1; sign <= 1; sign += 2) {
+      f->v[1][a] = sign * 0.2;
+      double g[3], gn[3], gr[3];
+      sph_op_grad(&normal, cfg.grad_k, pk, a, g);
+      sph_op_grad_pressure(&normal, cfg.grad_k, pk, a, NULL, 0, NULL, gn);
+      sph_op_grad_pressure(&radial, cfg.grad_k, pk, a, NULL, 0, NULL, gr);
+      assert_true(gn[1] == g[1]);            /* along the wall: M(37) */
+      assert_true(-gn[0] / f->rho[a] > 0.5); /* across it: not pulled in */
+      assert_true(-gr[0] / f->rho[a] > 0.5);
+      assert_true(sign * (-gr[1] + g[1]) / f->rho[a] < -0.1); /* radial: dragged */
+      if (j == NY / 2 && sign > 0)
+        print_message(
+            "moving along the wall at -412.5 Pa: a_y normal %+.3g, radial %+.3g (M37 %+.3g), "
+            "a_x normal %+.3f\n",
+            -gn[1] / f->rho[a], -gr[1] / f->rho[a], -g[1] / f->rho[a], -gn[0] / f->rho[a]);
+    }
+    f->v[1][a] = 0.0;
+  }
   sph_solver_free(&sv);
 }
 
@@ -196,7 +245,7 @@ static void test_wall_impedance(void **state) {
   impedance_box(&sv, &cfg, SPH_IMPEDANCE_ACOUSTIC);
   struct sph_system *s = &sv.sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  const struct sph_op op = {s, &sv.kernel, &sv.nb};
+  const struct sph_op op = {s, &sv.kernel, &sv.nb, 0};
   const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const size_t a = (size_t)(4 * NX); /* first column, fifth row: sees the left wall only */
   const struct sph_wall_impedance imp = {sv.impedance, 0.0}; /* the acoustic form */
@@ -267,7 +316,7 @@ static void test_wall_impedance_contact(void **state) {
   struct sph_system *s = &sv.sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID];
   const double dr = s->dr;
-  const struct sph_op op = {s, &sv.kernel, &sv.nb};
+  const struct sph_op op = {s, &sv.kernel, &sv.nb, 0};
   const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const struct sph_wall_impedance acoustic = {sv.impedance, 0.0};
   const struct sph_wall_impedance near = {sv.impedance, cfg.wall_impedance_reach * dr};
@@ -337,6 +386,7 @@ static void test_wall_impedance_contact(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_uniform_pressure),       cmocka_unit_test(test_no_pull_power),
+      cmocka_unit_test(test_no_pull_power_normal),   cmocka_unit_test(test_no_pull_tangential),
       cmocka_unit_test(test_contact_line),           cmocka_unit_test(test_wall_impedance),
       cmocka_unit_test(test_wall_impedance_contact),
   };

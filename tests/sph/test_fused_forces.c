@@ -58,7 +58,7 @@ static void compare(struct sph_solver *sv, int shake) {
       for (int c = 0; c < 3; c++) fl[c][q] = w[c];
     }
   const double *flux[3] = {fl[0], fl[1], fl[2]};
-  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const struct sph_op op = {s, &sv->kernel, &sv->nb, 0};
   const struct sph_wall_impedance imp = {
       sv->impedance,
       sv->cfg.wall_impedance == SPH_IMPEDANCE_CONTACT ? sv->cfg.wall_impedance_reach * s->dr : 0.0};

@@ -434,7 +434,7 @@ static void test_layer_hand(void **state) {
     const double d = hypot(f->x[0][b] - op->layer_x[0][iv], f->x[1][b] - op->layer_x[1][iv]);
     if (d < best) best = d, a = b;
   }
-  const struct sph_op o = {&sv->sys, &sv->kernel, &sv->nb};
+  const struct sph_op o = {&sv->sys, &sv->kernel, &sv->nb, 0};
   const struct sph_vertex_layer layer = {op->layer_vol, (const double *const *)op->layer_x};
   const double *pk[SPH_NKINDS] = {sv->sys.part[0].p, sv->sys.part[1].p, sv->sys.part[2].p};
   double g1[3], g0[3];

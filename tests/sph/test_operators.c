@@ -136,7 +136,7 @@ static struct errors measure(const struct sph_solver *sv, const struct field_def
   fill(sv, d, &F);
   const struct sph_system *s = &sv->sys;
   const struct sph_parts *fl = &s->part[SPH_KIND_FLUID];
-  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const struct sph_op op = {s, &sv->kernel, &sv->nb, 0};
   struct errors e = {0, 0, 0};
   for (size_t a = 0; a < fl->n; a++) {
     double x[3] = {fl->x[0][a], fl->x[1][a], 0.0};
@@ -224,7 +224,7 @@ static void test_flat_wall(void **state) {
   /* Without the wall terms the same operators are wrong by O(1) next to the wall. */
   struct fields F;
   fill(&a, &quad, &F);
-  const struct sph_op op = {&a.sys, &a.kernel, &a.nb};
+  const struct sph_op op = {&a.sys, &a.kernel, &a.nb, 0};
   double lap[3];
   sph_op_lap(&op, (const double *const *)F.beta, (const double *const(*)[3])F.U, NULL, 0, lap);
   assert_true(fabs(lap[0] - 2.0) > 0.3);
@@ -249,7 +249,7 @@ static void test_constant_defect(void **state) {
       one[k] = malloc((sv.sys.part[k].n + 1) * sizeof(double));
       for (size_t i = 0; i < sv.sys.part[k].n; i++) one[k][i] = 1.0;
     }
-    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb, 0};
     for (size_t a = 0; a < fl->n; a++) {
       double g[3];
       sph_op_grad(&op, 0.0, (const double *const *)one, a, g);
@@ -285,7 +285,7 @@ static void test_first_row_sign(void **state) {
       one[k] = malloc((sv.sys.part[k].n + 1) * sizeof(double));
       for (size_t i = 0; i < sv.sys.part[k].n; i++) one[k][i] = 1.0;
     }
-    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb};
+    const struct sph_op op = {&sv.sys, &sv.kernel, &sv.nb, 0};
     double g[3];
     sph_op_grad(&op, 0.0, (const double *const *)one, 3, g); /* bottom row, n = +y */
     print_message("first row at %s: phi = %.3f, Grad(1).n h = %+.4f\n", r ? "dr" : "dr/2",
@@ -321,7 +321,7 @@ static void test_cells_vs_naive(void **state) {
   sph_nbrs_gamma(&naive, &sv.sys, &sv.kernel);
   sph_solver_sync(&sv);
   fill(&sv, &quad, &F);
-  const struct sph_op o1 = {&sv.sys, &sv.kernel, &sv.nb}, o2 = {&sv.sys, &sv.kernel, &naive};
+  const struct sph_op o1 = {&sv.sys, &sv.kernel, &sv.nb, 0}, o2 = {&sv.sys, &sv.kernel, &naive, 0};
   for (size_t a = 0; a < fl->n; a++) {
     double g1[3], g2[3];
     sph_op_grad(&o1, 1.0, (const double *const *)F.f, a, g1);

@@ -33,6 +33,8 @@ static void test_defaults(void **state) {
   assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
   assert_int_equal(cfg.gamma_dynamic, 0);
   assert_int_equal(cfg.open_gradient_difference, 0);
+  assert_int_equal(cfg.no_pull_normal, 0);
+  assert_int_equal(cfg.wall_vertex_mass_density, 0);
   assert_int_equal(cfg.list_rebuild, SPH_LISTS_WHEN_NEEDED);
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
   assert_true(isnan(cfg.free_surface));
@@ -70,6 +72,9 @@ static void test_errors(void **state) {
   expect("repack: {layer_equilibrium: yes please}\n", "repack.layer_equilibrium", "");
   expect("repack: {layer_equilibrium: true}\n", "repack.layer_equilibrium", "non-zero gravity");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
+  expect("numerics: {no_pull: tangential}\n", "numerics.no_pull", "radial, normal");
+  expect("numerics: {wall_vertex_mass: fitted}\n", "numerics.wall_vertex_mass",
+         "constant, density");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");
   expect("numerics: {density_band: [1.1, 1.5]}\n", "numerics.density_band", "0 < lo < 1 < hi");
   expect("numerics: {wall_impedance: rigid}\n", "numerics.wall_impedance",

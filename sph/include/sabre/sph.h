@@ -59,6 +59,10 @@ struct sph_parts {
   double *grad_gamma[3]; /**< ∇γ, J(4) (fluid, vertex) [1/m] */
   double *normal[3];     /**< unit normal into the fluid (segment; vertex: mean of its segments) */
   double *measure;       /**< segment length (2D) or area (3D) [m^(d-1)]; 1 in 1D */
+  double *volume;        /**< vertex: V_v, the volume of the wall layer it stands for, m_v/ρ_v
+                              once the set-up has fixed the masses [m^d] (set by the solver) */
+  double *wall_mass;     /**< vertex: its mass once the set-up has fixed the masses [kg] (set by
+                              the solver; an open vertex's wall mass, sph_open_mass_base) */
   size_t *vertex[3];     /**< segment: indices of its d vertices in the vertex store */
   int64_t *id;           /**< stable id, unique over all kinds */
   uint8_t *flags;        /**< enum sph_flag bits */

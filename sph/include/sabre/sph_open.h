@@ -393,7 +393,8 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
  * floor held back, which mass_withheld[g] adds up.
  */
 /** The wall masses of the open vertices (mass_base: the threshold of particle creation is
- *  mass_base + ρ_v Δr^d) from the store's vertex masses; sph_solver_init calls it once the
+ *  mass_base + ρ_v Δr^d) from the store's vertex wall masses (sph_parts.wall_mass, which a
+ *  checkpoint carries: sph_checkpoint_read calls it again); sph_solver_init calls it once the
  *  vertex masses are final (after the repacking). No-op for op == NULL. */
 void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv);

@@ -106,6 +106,11 @@ struct sph_op {
   const struct sph_system *sys;
   const struct sph_kernel *kernel;
   const struct sph_nbrs *nb;
+  /** The no-pull rule of sph_op_grad_pressure for vertex pairs: 0 (numerics.no_pull: radial, the
+   *  default) leaves the whole pull out while a approaches the vertex along r_a − r_v; 1 (normal)
+   *  leaves out only its part along the vertex's unit normal, while a approaches the wall along
+   *  that normal. */
+  int no_pull_normal;
 };
 
 /**
@@ -231,6 +236,13 @@ struct sph_config {
                                  * boundaries in proportion to their share of the wall terms
                                  * (sph_op_grad_pressure, docs/sph-solver.md §10) */
   int gamma_dynamic;            /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
+  int no_pull_normal;           /**< numerics.no_pull: normal (1; default radial, 0): a wall
+                                 * vertex's pull is left out in its part along the vertex's
+                                 * normal only (sph_op.no_pull_normal, docs/sph-solver.md §4) */
+  int wall_vertex_mass_density; /**< numerics.wall_vertex_mass: density (1; default constant, 0):
+                                 * at the start of each step a wall vertex's mass becomes
+                                 * V_v ρ_v, its wall layer compressing with the fluid
+                                 * (docs/sph-solver.md §4) */
   /** α of numerics.artificial_viscosity [-]: sph_solver_init() adds ν_α = α h c0 / (2(d + 2))
    *  [m²/s] to nu in the solver's copy of the configuration (docs/sph-solver.md §4) */
   double artificial_viscosity;
@@ -332,6 +344,9 @@ struct sph_solver {
   double *impedance;       /**< fluid ρ c [kg/m²/s] (numerics.wall_impedance) */
   int *seg_group;          /**< force group of each segment (−1 none) */
   int *vert_group;         /**< force group of each vertex (−1 none) */
+  double *vertex_dm;       /**< numerics.wall_vertex_mass: density: per vertex, the change of its
+                                mass at the start of the step [kg] (scratch) */
+  size_t cap_vertex_dm;
   size_t cap[SPH_NKINDS];
   double vertex_phi;          /**< vertex layer thickness / Δr of the vertex masses [-] */
   double repack_residual[2];  /**< largest defect × h at the start (after the perturbation) and at

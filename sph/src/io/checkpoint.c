@@ -2,7 +2,8 @@
  * Checkpoints: the whole particle store through its field table (so a field added to the store is
  * saved without touching this file), the run's time, step, last Δt and output counters, and the
  * imposed-flux controller's history (M 62–63 depend on the last two measured velocities) and the
- * open boundaries' counts of created and deleted particles and their released mass. Raw
+ * open boundaries' counts of created and deleted particles and their released mass, and the
+ * fitted wall layer's thickness (the set-up, which a restart does not repeat, fitted it). Raw
  * native-endian binary: a checkpoint restarts a run on the machine that wrote it, bit-identically
  * for the same thread count (the step depends only on this state).
  */
@@ -14,7 +15,7 @@
 #include "sabre/common.h"
 #include "sabre/sph_solver.h"
 
-static const char magic[16] = "SABRE-SPH-CKPTA"; /* versions 1-9, then A */
+static const char magic[16] = "SABRE-SPH-CKPTB"; /* versions 1-9, A, B (vertex volume, wall mass) */
 
 void sph_run_counters_digest(struct sph_run_counters *rc, const struct cmn_case *c) {
   rc->ndigest = 0;
@@ -66,6 +67,7 @@ int sph_checkpoint_write(const struct sph_solver *sv, const struct sph_run_count
   W(&sv->time, sizeof(double), 1);
   W(&sv->step, sizeof(long), 1);
   W(&sv->dt, sizeof(double), 1);
+  W(&sv->vertex_phi, sizeof(double), 1); /* the set-up's (fitted after the repacking) */
   W(&rc->next_output, sizeof(double), 1);
   W(&nout, sizeof nout, 1);
   W(rc->output_times, sizeof(double), (size_t)nout);
@@ -223,6 +225,7 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   R(&sv->time, sizeof(double), 1);
   R(&sv->step, sizeof(long), 1);
   R(&sv->dt, sizeof(double), 1);
+  R(&sv->vertex_phi, sizeof(double), 1);
   R(&rc->next_output, sizeof(double), 1);
   R(&nout, sizeof nout, 1);
   if (nout > 100000000u) goto short_read;
@@ -283,6 +286,8 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   }
   fclose(fp);
   sph_solver_sync(sv);
+  sph_open_mass_base(sv->open,
+                     sv); /* the open vertices' wall masses of the run, not the set-up's */
   return 0;
 short_read:
   snprintf(msg, msglen, "%s: truncated or corrupt checkpoint", path);

@@ -290,7 +290,7 @@ void sph_solver_wall_forces(const struct sph_solver *sv, double (*out)[3]) {
 double sph_skew_adjoint_defect(const struct sph_solver *sv, const double *const fk[SPH_NKINDS],
                                const double *const B[SPH_NKINDS][3]) {
   const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
-  const struct sph_op op = {&sv->sys, &sv->kernel, &sv->nb};
+  const struct sph_op op = {&sv->sys, &sv->kernel, &sv->nb, 0};
   double sum = 0.0;
   for (size_t a = 0; a < f->n; a++) {
     double g[3];

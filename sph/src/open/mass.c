@@ -18,7 +18,7 @@
 void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv) {
   if (!op) return;
   const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
-  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->mass[i];
+  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->wall_mass[i];
 }
 
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {

@@ -57,6 +57,42 @@ static double closing_vertex(const struct sph_parts *pa, size_t a, const struct 
   return s;
 }
 
+/* numerics.no_pull: normal, for fluid particle a and vertex b at separation r = r_a − r_b (v_b its
+ * motion): 1 when a closes in on b along the vertex's unit normal n̂ (stored in n),
+ * (r·n̂)((v_a − v_b)·n̂) ≤ 0, so that the pull's part along n̂ would do work ≥ 0 on the pair's
+ * relative motion; 0 otherwise. A vertex without a normal is tested along n̂ = r/|r| (the whole
+ * pull, as the radial rule). */
+static int pull_cut_normal(const struct sph_parts *pa, size_t a, const struct sph_parts *pb,
+                           size_t b, const double r[3], double n[3]) {
+  double nn = 0.0;
+  for (int c = 0; c < 3; c++) {
+    n[c] = pb->normal[c][b];
+    nn += n[c] * n[c];
+  }
+  if (!(nn > 0.0)) {
+    for (int c = 0; c < 3; c++) n[c] = r[c];
+    nn = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+  }
+  const double inv = 1.0 / sqrt(nn);
+  double rn = 0.0, un = 0.0;
+  for (int c = 0; c < 3; c++) {
+    n[c] *= inv;
+    rn += r[c] * n[c];
+    un += (pa->v[c][a] - motion(pb, b, c)) * n[c];
+  }
+  return rn * un <= 0.0;
+}
+
+/* g += t d, less its part along the unit vector n when n is given. */
+static void add_term(double g[3], double t, const double d[3], const double *n) {
+  if (n) {
+    const double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    for (int c = 0; c < 3; c++) g[c] += t * (d[c] - dn * n[c]);
+  } else {
+    for (int c = 0; c < 3; c++) g[c] += t * d[c];
+  }
+}
+
 /* Grad^{γ,k}_a(f), M(37); with no_pull, a wall pair (vertex or segment) whose weighted sum
  * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out while a does not move away from the
  * element (sph_op_grad_pressure): a pull that would do work ≥ 0 on the pair's relative motion.
@@ -105,13 +141,15 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
         }
       }
       double sum = ratio * fb + fa / ratio;
-      if (no_pull && kind == SPH_KIND_VERTEX && sum < 0.0 &&
-          closing_vertex(pa, a, pb, b, pr.r) <= 0.0)
-        continue;
+      double nv[3]; /* numerics.no_pull: normal: the pull's part along n̂_v is left out */
+      const int pull = no_pull && kind == SPH_KIND_VERTEX && sum < 0.0;
+      if (pull && !op->no_pull_normal && closing_vertex(pa, a, pb, b, pr.r) <= 0.0) continue;
+      const double *cut =
+          pull && op->no_pull_normal && pull_cut_normal(pa, a, pb, b, pr.r, nv) ? nv : NULL;
       if (fc != 0.0) sum -= fc * (ratio + 1.0 / ratio);
       const double lv = layer && kind == SPH_KIND_VERTEX ? layer->vol[b] : 0.0;
       const double t = (vb - lv) * sum * pr.dwdr_over_r;
-      for (int c = 0; c < 3; c++) g[c] += t * pr.r[c];
+      add_term(g, t, pr.r, cut);
       if (lv != 0.0) { /* the vertex's entered mass, at the centre of its layer */
         const double xa[3] = {pa->x[0][a], pa->x[1][a], pa->x[2][a]};
         const double xl[3] = {layer->x[0][b], layer->x[1][b], layer->x[2][b]};
@@ -121,7 +159,7 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
         const double r = sqrt(r2);
         if (r > 0.0 && r < sph_kernel_support(op->kernel)) {
           const double tl = lv * sum * sph_kernel_dwdr_inline(op->kernel, r) / r;
-          for (int c = 0; c < 3; c++) g[c] += tl * d[c];
+          add_term(g, tl, d, cut);
         }
       }
     }

@@ -287,7 +287,7 @@ int sph_scalar_boundary_values(struct sph_scalar *sc, long *bad_vertex) {
 int sph_scalar_laplacian(struct sph_scalar *sc, long *bad_vertex) {
   int status = sph_scalar_boundary_values(sc, bad_vertex);
   if (status != SPH_ROBIN_SUCCESS) return status;
-  const struct sph_op op = {&sc->sys, &sc->kernel, &sc->nb};
+  const struct sph_op op = {&sc->sys, &sc->kernel, &sc->nb, 0};
   const double *beta[SPH_NKINDS], *A[SPH_NKINDS][3];
   for (int k = 0; k < SPH_NKINDS; k++) {
     beta[k] = sc->one[k];

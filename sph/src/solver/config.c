@@ -301,6 +301,11 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                           &cfg->artificial_viscosity));
   static const char *const ograds[] = {"symmetric", "difference", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, 0, &cfg->open_gradient_difference));
+  static const char *const pulls[] = {"radial", "normal", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.no_pull", pulls, 0, &cfg->no_pull_normal));
+  static const char *const vmasses[] = {"constant", "density", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.wall_vertex_mass", vmasses, 0,
+                          &cfg->wall_vertex_mass_density));
   static const char *const gammas[] = {"analytic", "dynamic", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.gamma", gammas, 0, &cfg->gamma_dynamic));
   static const char *const vvols[] = {"geometric", "fitted", NULL};

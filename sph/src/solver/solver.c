@@ -442,7 +442,7 @@ static void forces_impl(struct sph_solver *sv) {
   /* the wall shear stress per F–S pair, M(19–20), computed in the viscous term */
   const struct sph_wall_shear shear = {sv->mu[SPH_KIND_FLUID], sv->mu[SPH_KIND_SEGMENT],
                                        0.5 * s->dr};
-  const struct sph_op op = {s, &sv->kernel, &sv->nb};
+  const struct sph_op op = {s, &sv->kernel, &sv->nb, sv->cfg.no_pull_normal};
   const double *pk[SPH_NKINDS] = {s->part[0].p, s->part[1].p, s->part[2].p};
   const double *muk[SPH_NKINDS] = {sv->mu[0], sv->mu[1], sv->mu[2]};
   const double *vel[SPH_NKINDS][3];
@@ -913,6 +913,48 @@ double sph_solver_flux_measure(const struct sph_solver *sv) {
 
 static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen);
 
+/*
+ * numerics.wall_vertex_mass: density (docs/sph-solver.md §4, "Flow along a wall", items 2 and 5):
+ * at the start of the step every wall vertex (not open: those carry the open boundary's mass,
+ * §10) takes the mass m_v = V_v ρ_v of its wall layer at the density of its last evaluation, so
+ * that the layer compresses with the fluid next to it, and the change enters the time summation
+ * of §3 as a change of state n: γ_a ρ_a^n gains Σ_v Δm_v w(r_av) (the continuity then goes on
+ * from that ρ^n with the new masses). Sums over the fluid → vertex lists, one fluid particle per
+ * iteration (the same bits whatever the threads); the carried sums of §3 are formed afresh.
+ */
+static void wall_vertex_masses(struct sph_solver *sv) {
+  struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  struct sph_parts *v = &s->part[SPH_KIND_VERTEX];
+  if (v->n + 1 > sv->cap_vertex_dm) {
+    sv->vertex_dm = cmn_realloc(sv->vertex_dm, (v->n + 1) * sizeof *sv->vertex_dm);
+    sv->cap_vertex_dm = v->n + 1;
+  }
+  double *dm = sv->vertex_dm;
+  for (size_t i = 0; i < v->n; i++) {
+    dm[i] = 0.0;
+    if (v->flags[i] & SPH_FLAG_OPEN) continue;
+    const double m = v->volume[i] * v->rho[i];
+    dm[i] = m - v->mass[i];
+    v->mass[i] = m;
+  }
+  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_VERTEX];
+  const size_t n = f->n;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+  for (size_t a = 0; a < n; a++) {
+    double sum = 0.0;
+    for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+      const size_t b = nl->index[q];
+      struct sph_pair pr;
+      if (dm[b] != 0.0 && sph_pair_eval(&sv->kernel, s, f, a, v, b, &pr)) sum += dm[b] * pr.w;
+    }
+    sv->rho_n[a] += sum / sv->gamma_n[a];
+  }
+  sv->sum_w_valid = 0;
+}
+
 int sph_solver_step(struct sph_solver *sv, double dt_limit, char *msg, size_t msglen) {
   const double t0 = cmn_wall_time();
   const int rc = step_impl(sv, dt_limit, msg, msglen);
@@ -954,6 +996,7 @@ static int step_impl(struct sph_solver *sv, double dt_limit, char *msg, size_t m
   }
   memcpy(sv->rho_n, f->rho, n * sizeof(double));
   memcpy(sv->gamma_n, f->gamma, n * sizeof(double));
+  if (sv->cfg.wall_vertex_mass_density) wall_vertex_masses(sv);
   sph_open_mass_begin(sv->open, sv); /* open boundaries: m_v^n, J(14) (§10) */
   for (int c = 0; c < 3; c++) memcpy(sv->grad_gamma_n[c], f->grad_gamma[c], n * sizeof(double));
 

@@ -492,6 +492,9 @@ int sph_stability_modes(size_t n, double *J, double *lambda_re, double *lambda_i
                         double *amp);
 
 /** Global diagnostics, one row of diagnostics.csv. */
+/** One row of diagnostics.csv. mass: the fluid particles', the open vertices' and the wall
+ *  vertices' set-up masses (sph_parts.wall_mass; with numerics.wall_vertex_mass: density a wall
+ *  vertex's mass follows its layer's density, which moves no mass) [kg]. */
 struct sph_diagnostics {
   double time, dt, count, mass, kinetic, potential, internal, max_speed, max_drho;
 };

@@ -37,7 +37,11 @@ void sph_solver_diagnostics(const struct sph_solver *sv, struct sph_diagnostics 
     vmax = fmax(vmax, sqrt(v2));
     dmax = fmax(dmax, fabs(f->rho[a] / sv->cfg.rho0 - 1.0));
   }
-  for (size_t i = 0; i < v->n; i++) mass += v->mass[i];
+  /* the wall vertices at their set-up masses: with numerics.wall_vertex_mass: density their mass
+   * follows the wall layer's density, which moves no mass between particles (docs/sph-solver.md
+   * §4); open vertices at the masses they carry (§10) */
+  for (size_t i = 0; i < v->n; i++)
+    mass += (v->flags[i] & SPH_FLAG_OPEN) ? v->mass[i] : v->wall_mass[i];
   d->time = sv->time;
   d->dt = sv->dt;
   d->count = (double)f->n;

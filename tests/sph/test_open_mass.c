@@ -151,11 +151,11 @@ static void test_outflow_floor(void **state) {
   for (size_t i = 0; i < v->n; i++) {
     if (op->vert_group[i] < 0) continue;
     op->mdot[i] = 0.0;
-    op->mass0[i] = v->mass[i] = op->mass_base[i];
+    op->mass0[i] = v->mass[i] = v->wall_mass[i];
     if (!(v->flags[i] & SPH_FLAG_CORNER) && nv < 4) iv[nv++] = i;
   }
   assert_int_equal(nv, 4);
-  const double *b = op->mass_base;
+  const double *b = v->wall_mass;
   /* 0: from −0.4 m_ref by −0.3 m_ref: held at −0.5 (0.2 m_ref held back); 1: from −0.8 m_ref
    * (below the floor) by −0.1: stays; 2: from 0 by −0.3: follows; 3: inflow by +2 m_ref: follows */
   const double start[4] = {-0.4, -0.8, 0.0, 0.0}, change[4] = {-0.3, -0.1, -0.3, 2.0};
@@ -317,7 +317,7 @@ static void test_create_delete_hand(void **state) {
     if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.1) < 1e-12) iu = i;
   }
   assert_true(iv != (size_t)-1 && iu != (size_t)-1);
-  const double base = op->mass_base[iv];
+  const double base = v->wall_mass[iv];
   /* the boundary's density, say 3 % above ρ0 (a pressure level): a particle of volume Δr² */
   v->rho[iv] = 1.03 * 1000.0;
   const double m_new = 1.03 * m_ref;
@@ -376,14 +376,14 @@ static void test_create_delete_hand(void **state) {
   sph_solver_evaluate(sv);
   assert_true(sv->nb.behind[b0]);
   v->mass[iv] = base - 0.6 * m_ref;
-  v->mass[iu] = op->mass_base[iu] - 0.2 * m_ref;
+  v->mass[iu] = v->wall_mass[iu] - 0.2 * m_ref;
   op->mdot[iv] = op->mdot[iu] = -1.0;
   const double mv0 = v->mass[iv], mu0 = v->mass[iu], mb = f->mass[b0], m3 = total_mass(sv);
   assert_int_equal(sph_open_delete_particles(op, sv), 1);
   f = &sv->sys.part[SPH_KIND_FLUID];
   assert_int_equal(f->n, nb0 - 1);
   for (size_t b = 0; b < f->n; b++) assert_true(f->id[b] != gone);
-  const double dv = 0.75 * (base - mv0), du = 0.25 * (op->mass_base[iu] - mu0);
+  const double dv = 0.75 * (base - mv0), du = 0.25 * (v->wall_mass[iu] - mu0);
   assert_true(fabs(v->mass[iv] - (mv0 + dv)) <= 1e-15 * base &&
               fabs(v->mass[iu] - (mu0 + du)) <= 1e-15 * base);
   assert_true(fabs(op->mass_released[0] - (mb - dv - du)) <= 1e-15 * mb);
@@ -412,7 +412,7 @@ static void test_layer_hand(void **state) {
     if (fabs(v->x[0][i] - 0.3) < 1e-12 && fabs(v->x[1][i] - 0.075) < 1e-12) iv = i;
   assert_true(iv != (size_t)-1 && v->v[0][iv] < 0.0); /* inflow: into the fluid, −x */
   const double m_new = v->rho[iv] * op->cell_volume, phi = sv->vertex_phi, dr = 0.025;
-  v->mass[iv] = op->mass_base[iv] + 0.4 * m_new;
+  v->mass[iv] = v->wall_mass[iv] + 0.4 * m_new;
   sph_open_layer(op, sv);
   const double lv = op->layer_vol[iv];
   assert_true(fabs(lv - 0.4 * m_new / v->rho[iv]) <= 1e-15 * m_new / v->rho[iv]);
@@ -422,10 +422,10 @@ static void test_layer_hand(void **state) {
   for (size_t i = 0; i < v->n; i++) nlayer += op->layer_vol[i] != 0.0;
   assert_int_equal(nlayer, 1); /* the others are at their wall mass, corners and walls too */
   /* at one particle mass the layer's centre is the created particle's position */
-  v->mass[iv] = op->mass_base[iv] + m_new;
+  v->mass[iv] = v->wall_mass[iv] + m_new;
   sph_open_layer(op, sv);
   assert_true(fabs(op->layer_x[0][iv] - (0.3 - (phi + 0.5) * dr)) <= 1e-15);
-  v->mass[iv] = op->mass_base[iv] + 0.4 * m_new;
+  v->mass[iv] = v->wall_mass[iv] + 0.4 * m_new;
   sph_open_layer(op, sv);
   /* the particle nearest to the layer's centre: its gradient with and without the layer */
   size_t a = 0;

@@ -62,7 +62,8 @@ struct sph_parts {
   double *volume;        /**< vertex: V_v, the volume of the wall layer it stands for, m_v/ρ_v
                               once the set-up has fixed the masses [m^d] (set by the solver) */
   double *wall_mass;     /**< vertex: its mass once the set-up has fixed the masses [kg] (set by
-                              the solver; an open vertex's wall mass, sph_open_mass_base) */
+                              the solver; an open vertex's creation threshold and outflow floor
+                              follow from it) */
   size_t *vertex[3];     /**< segment: indices of its d vertices in the vertex store */
   int64_t *id;           /**< stable id, unique over all kinds */
   uint8_t *flags;        /**< enum sph_flag bits */

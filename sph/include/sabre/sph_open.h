@@ -306,7 +306,6 @@ struct sph_open {
                                                  depth] */
   int no_io_terms; /**< tests only: 1 leaves the i/o terms of J(11) out of the continuity */
   /* Particle creation and deletion, δm_v of J(14) (docs/sph-solver.md §10). */
-  double *mass_base;  /**< per vertex: its wall mass (sph_open_mass_base) [kg] */
   double cell_volume; /**< Δr^d, the volume of a created particle: its mass is the vertex's solved
                            density times it [m^d] */
   long created[SPH_MAX_OPEN_GROUPS], deleted[SPH_MAX_OPEN_GROUPS]; /**< since the run began */
@@ -392,11 +391,6 @@ int sph_open_group_selects(const struct sph_open_group *g, int wall, long edge, 
  * already): mass_step[g] is then the vertices' actual change, Δt × the mass flux plus what the
  * floor held back, which mass_withheld[g] adds up.
  */
-/** The wall masses of the open vertices (mass_base: the threshold of particle creation is
- *  mass_base + ρ_v Δr^d) from the store's vertex wall masses (sph_parts.wall_mass, which a
- *  checkpoint carries: sph_checkpoint_read calls it again); sph_solver_init calls it once the
- *  vertex masses are final (after the repacking). No-op for op == NULL. */
-void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv);
 void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac);
 void sph_open_mass_end(struct sph_open *op, struct sph_solver *sv, double dt);

@@ -491,7 +491,6 @@ int sph_stability_rates(size_t n, double *J, double *lambda_re, double *lambda_i
 int sph_stability_modes(size_t n, double *J, double *lambda_re, double *lambda_im, double *rate,
                         double *amp);
 
-/** Global diagnostics, one row of diagnostics.csv. */
 /** One row of diagnostics.csv. mass: the fluid particles', the open vertices' and the wall
  *  vertices' set-up masses (sph_parts.wall_mass; with numerics.wall_vertex_mass: density a wall
  *  vertex's mass follows its layer's density, which moves no mass) [kg]. */

@@ -286,8 +286,6 @@ int sph_checkpoint_read(struct sph_solver *sv, struct sph_run_counters *rc, cons
   }
   fclose(fp);
   sph_solver_sync(sv);
-  sph_open_mass_base(sv->open,
-                     sv); /* the open vertices' wall masses of the run, not the set-up's */
   return 0;
 short_read:
   snprintf(msg, msglen, "%s: truncated or corrupt checkpoint", path);

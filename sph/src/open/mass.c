@@ -15,12 +15,6 @@
 #include "sabre/sph_solver.h"
 #include "sabre/sph_walls.h"
 
-void sph_open_mass_base(struct sph_open *op, const struct sph_solver *sv) {
-  if (!op) return;
-  const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
-  for (size_t i = 0; i < v->n; i++) op->mass_base[i] = v->wall_mass[i];
-}
-
 void sph_open_mass_begin(struct sph_open *op, const struct sph_solver *sv) {
   if (!op) return;
   const struct sph_parts *v = &sv->sys.part[SPH_KIND_VERTEX];
@@ -34,7 +28,7 @@ static double mass_floor(const struct sph_open *op, const struct sph_solver *sv,
                          double m0) {
   const double owe =
       sv->cfg.open.group[op->vert_group[i]].outflow_deficit * sv->cfg.rho0 * op->cell_volume;
-  return fmin(op->mass_base[i] - owe, m0);
+  return fmin(sv->sys.part[SPH_KIND_VERTEX].wall_mass[i] - owe, m0);
 }
 
 void sph_open_mass_set(struct sph_open *op, struct sph_solver *sv, double fac) {
@@ -266,7 +260,7 @@ size_t sph_open_delete_particles(struct sph_open *op, struct sph_solver *sv) {
       if (w[d] == 0.0) continue;
       const double q = w[d] * f->mass[a];
       if (op->mdot[iv] < 0.0) { /* outflow: back towards the wall mass, the rest leaves */
-        const double dm = w[d] * (op->mass_base[iv] - v->mass[iv]);
+        const double dm = w[d] * (v->wall_mass[iv] - v->mass[iv]);
         v->mass[iv] += dm;
         sph_open_kahan_add(&op->mass_released[g], &op->mass_comp[1][g], q - dm);
       } else {
@@ -302,7 +296,7 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
     /* a volume Δr^d of the fluid that entered, at the density the boundary problem gave it (ρ0
      * for a vertex never solved, which has no flux either) */
     const double m = (v->rho[i] > 0.0 ? v->rho[i] : sv->cfg.rho0) * op->cell_volume;
-    if (!(v->mass[i] - op->mass_base[i] >= m)) continue;
+    if (!(v->mass[i] - v->wall_mass[i] >= m)) continue;
     const double *n = op->pts[g].normal[op->vert_point[i]];
     const size_t a = sph_system_append(s, SPH_KIND_FLUID, 1);
     struct sph_parts *f = &s->part[SPH_KIND_FLUID];
@@ -329,7 +323,7 @@ void sph_open_layer(struct sph_open *op, const struct sph_solver *sv) {
     op->layer_vol[i] = 0.0;
     const int g = op->vert_group[i];
     if (g < 0 || (v->flags[i] & SPH_FLAG_CORNER) || !(v->rho[i] > 0.0)) continue;
-    const double dm = v->mass[i] - op->mass_base[i];
+    const double dm = v->mass[i] - v->wall_mass[i];
     if (!(dm > 0.0)) continue;
     const double *n = op->pts[g].normal[op->vert_point[i]];
     double un = 0.0;

@@ -187,7 +187,6 @@ struct sph_open *sph_open_create(const struct sph_solver *sv, const int *seg_wal
   op->mdot = cmn_calloc(v->n + 1, sizeof *op->mdot);
   op->mass0 = cmn_calloc(v->n + 1, sizeof *op->mass0);
   for (size_t i = 0; i < v->n; i++) op->mass0[i] = v->mass[i];
-  op->mass_base = cmn_calloc(v->n + 1, sizeof *op->mass_base); /* sph_open_mass_base() */
   op->layer_vol = cmn_calloc(v->n + 1, sizeof *op->layer_vol); /* sph_open_layer() */
   for (int c = 0; c < 3; c++) op->layer_x[c] = cmn_calloc(v->n + 1, sizeof *op->layer_x[c]);
   op->cell_volume = pow(sv->sys.dr, dim);
@@ -234,7 +233,6 @@ void sph_open_free(struct sph_open *op) {
   free(op->wall_v);
   free(op->mdot);
   free(op->mass0);
-  free(op->mass_base);
   free(op->layer_vol);
   for (int c = 0; c < 3; c++) free(op->layer_x[c]);
   free(op->work);

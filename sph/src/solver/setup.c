@@ -395,13 +395,13 @@ void sph_solver_init(struct sph_solver *sv, const struct sph_config *cfg, struct
   profile_free(&prof);
   fluid_velocity(sv, wave);
   if (wave) sph_open_source_free(wave);
-  /* the wall masses, final now (docs/sph-solver.md §10), and the wall layers' volumes (§4): in
-   * the store, so that a restart, which does not repeat the set-up, has them */
+  /* the wall masses, final now (the open vertices' creation threshold and outflow floor,
+   * docs/sph-solver.md §10), and the wall layers' volumes (§4): in the store, so that a restart,
+   * which does not repeat the set-up, has them */
   for (size_t i = 0; i < v->n; i++) {
     v->wall_mass[i] = v->mass[i];
     v->volume[i] = v->mass[i] / v->rho[i];
   }
-  sph_open_mass_base(sv->open, sv);
 
   sv->evaluated_step = -1;
 

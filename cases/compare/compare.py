@@ -41,7 +41,8 @@ Problem keys (all required unless a default is given):
   sph: dr [list], h_over_dr (2), diffusion (ferrari), and sabre-sph's numerics.open_gradient,
                             numerics.diffusion_speed, numerics.eta, numerics.no_pull and
                             numerics.wall_vertex_mass (their defaults when
-                            absent); width [m] (absent: SPH in 1D): SPH in a 2D channel of that
+                            absent; a value not among sabre-sph's choices is an
+                            error naming this key); width [m] (absent: SPH in 1D): SPH in a 2D channel of that
                             width between free-slip walls at y = 0 and y = width, its x faces
                             open; repack (0): sabre-sph's repack.steps
   fv1d: cells, flux (godunov), reconstruction (mc)
@@ -201,21 +202,23 @@ def run(cmd, log):
         fail(f"{' '.join(cmd)} failed (exit {r.returncode}); end of {log}:\n{tail}")
 
 
-def channel_width(prob):
-    """The width of the 2D channel of `sph.width` [m], or None for a 1D pipe."""
+def channel_width(prob, where="problem"):
+    """The width of the 2D channel of `sph.width` [m], or None for a 1D pipe (where: the problem
+    file, for the error)."""
     w = (prob.get("sph") or {}).get("width")
     if w is None:
         return None
     if not isinstance(w, (int, float)) or isinstance(w, bool) or not w > 0.0:
-        fail(f"sph.width: expected a width > 0 (m), got {w!r}")
+        fail(f"{where}: sph.width: expected a width > 0 (m), got {w!r}")
     return float(w)
 
 
-def repack_steps(prob):
-    """sabre-sph's repack.steps from `sph.repack` (0 when absent)."""
+def repack_steps(prob, where="problem"):
+    """sabre-sph's repack.steps from `sph.repack` (0 when absent; where: the problem file, for the
+    error)."""
     n = (prob.get("sph") or {}).get("repack", 0)
     if not isinstance(n, int) or isinstance(n, bool) or n < 0:
-        fail(f"sph.repack: expected a number of steps >= 0, got {n!r}")
+        fail(f"{where}: sph.repack: expected a number of steps >= 0, got {n!r}")
     return n
 
 
@@ -299,8 +302,17 @@ def main(argv):
         if extra:
             fail(f"{problem}: {key}: unknown key(s) {', '.join(extra)} "
                  f"(expected: {', '.join(sorted(allowed))})")
-    width = channel_width(prob)
-    repack_steps(prob)  # checked before anything is written
+    # sabre-sph's choices, checked here so that a bad value names the problem file's key
+    for key, choices in (("diffusion", ("none", "ferrari", "brezzi")),
+                         ("open_gradient", ("symmetric", "difference")),
+                         ("diffusion_speed", ("max", "eta")),
+                         ("no_pull", ("radial", "normal")),
+                         ("wall_vertex_mass", ("constant", "density"))):
+        value = (prob.get("sph") or {}).get(key)
+        if value is not None and value not in choices:
+            fail(f"{problem}: sph.{key}: expected one of {', '.join(choices)}, not {value!r}")
+    width = channel_width(prob, problem)
+    repack_steps(prob, problem)  # checked before anything is written
     name = prob["name"]
     build = opts["--build"] or os.environ.get("SABRE_BUILD") or \
         os.path.join(os.path.dirname(os.path.dirname(HERE)), "build")

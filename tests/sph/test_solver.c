@@ -320,6 +320,75 @@ static void test_wall_vertex_mass_density(void **state) {
   sph_solver_free(&sv);
 }
 
+/* numerics.lone_particle: a particle with no other fluid within its support (a droplet) takes no
+ * tension and does not stop the run on the density band's lower bound; one inside the pool and
+ * one on its free surface keep p(ρ) < 0 (their kernels hold fluid fractions of about 1 and 0.69).
+ * With the default (eos) the droplet keeps p(ρ) and stops the run. */
+#define LONE_CASE                                              \
+  "geometry:\n"                                                \
+  "  dimension: 2\n"                                           \
+  "  dr: 0.01\n"                                               \
+  "  first_row: 1\n"                                           \
+  "  walls: [{type: box, lo: [0, 0], hi: [0.4, 0.2]}]\n"       \
+  "  fluid: [{type: box, lo: [0, 0], hi: [0.1, 0.05]},\n"      \
+  "          {type: box, lo: [0.3, 0.1], hi: [0.31, 0.11]}]\n" \
+  "fluid: {rho0: 1000, c0: 20}\n"                              \
+  "time: {end: 1}\n"
+static void lone_run(const char *extra, double *p_lone, double *p_pool, double *p_surf, int *rc,
+                     char *msg, size_t msglen) {
+  char text[2048];
+  snprintf(text, sizeof text, "%s%s", LONE_CASE, extra);
+  struct sph_solver *sv = fixture_solver_from_case(text);
+  struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  size_t lone = f->n, pool = f->n, surf = f->n;
+  double top = 0.0;
+  for (size_t a = 0; a < f->n; a++)
+    if (f->x[0][a] < 0.2) top = fmax(top, f->x[1][a]);
+  for (size_t a = 0; a < f->n; a++) {
+    if (f->x[0][a] > 0.2) {
+      assert_true(lone == f->n); /* one particle in the second box */
+      lone = a;
+    } else if (fabs(f->x[0][a] - 0.05) < 0.006 && fabs(f->x[1][a] - 0.025) < 0.006) {
+      pool = a;
+    }
+    if (f->x[1][a] == top && fabs(f->x[0][a] - 0.05) < 0.006) surf = a; /* the free surface */
+  }
+  assert_true(lone < f->n && pool < f->n && surf < f->n);
+  f->rho[lone] = 0.6 * 1000.0;
+  f->rho[pool] = 0.999 * 1000.0;
+  f->rho[surf] = 0.999 * 1000.0;
+  sph_solver_sync(sv);
+  sph_solver_evaluate(sv);
+  *p_lone = f->p[lone];
+  *p_pool = f->p[pool];
+  *p_surf = f->p[surf];
+  f->rho[lone] = 0.4 * 1000.0; /* below the band's 0.5 */
+  sph_solver_sync(sv);
+  *rc = sph_solver_step(sv, INFINITY, msg, msglen);
+  fixture_solver_destroy(sv);
+}
+
+static void test_lone_particle(void **state) {
+  (void)state;
+  sabre_fp_traps_on();
+  double pl, pp, ps;
+  int rc;
+  char msg[512];
+  lone_run("numerics: {lone_particle: ambient}\n", &pl, &pp, &ps, &rc, msg, sizeof msg);
+  print_message("ambient: droplet p = %g Pa, pool p = %g, surface p = %g Pa, step rc %d\n", pl, pp,
+                ps, rc);
+  assert_true(pl == 0.0);
+  assert_true(pp < -10.0 && ps < -10.0);
+  assert_int_equal(rc, 0);
+  lone_run("", &pl, &pp, &ps, &rc, msg, sizeof msg);
+  print_message("eos: droplet p = %g Pa, pool p = %g, surface p = %g Pa, step rc %d: %s\n", pl, pp,
+                ps, rc, msg);
+  assert_true(pl < -1e4);
+  assert_true(pp < -10.0 && ps < -10.0);
+  assert_int_equal(rc, -1);
+  assert_non_null(strstr(msg, "density outside"));
+}
+
 static void test_density_band_stop(void **state) {
   (void)state;
   sabre_fp_traps_on();
@@ -628,6 +697,7 @@ int main(void) {
       cmocka_unit_test(test_vertex_masses),
       cmocka_unit_test(test_wall_vertex_mass_density),
       cmocka_unit_test(test_density_band_stop),
+      cmocka_unit_test(test_lone_particle),
       cmocka_unit_test(test_escape_and_nan),
       cmocka_unit_test(test_hydrostatic_floor),
       cmocka_unit_test(test_time_order),

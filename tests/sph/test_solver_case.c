@@ -34,6 +34,8 @@ static void test_defaults(void **state) {
   assert_int_equal(cfg.gamma_dynamic, 0);
   assert_int_equal(cfg.open_gradient_difference, 0);
   assert_int_equal(cfg.no_pull_normal, 0);
+  assert_int_equal(cfg.lone_ambient, 0);
+  assert_true(cfg.lone_fraction == 0.35);
   assert_int_equal(cfg.wall_vertex_mass_density, 0);
   assert_int_equal(cfg.list_rebuild, SPH_LISTS_WHEN_NEEDED);
   assert_true(cfg.cfl == 0.3 && cfg.output_interval == 0.025 && isinf(cfg.dt_max));
@@ -73,6 +75,9 @@ static void test_errors(void **state) {
   expect("repack: {layer_equilibrium: true}\n", "repack.layer_equilibrium", "non-zero gravity");
   expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {no_pull: tangential}\n", "numerics.no_pull", "radial, normal");
+  expect("numerics: {lone_particle: zero}\n", "numerics.lone_particle", "eos, ambient");
+  expect("numerics: {lone_particle: ambient, lone_fraction: 1.5}\n", "numerics.lone_fraction", "");
+  expect("numerics: {lone_fraction: 0.3}\n", "numerics.lone_fraction", "ambient only");
   expect("numerics: {wall_vertex_mass: fitted}\n", "numerics.wall_vertex_mass",
          "constant, density");
   expect("numerics: {list_rebuild: never}\n", "numerics.list_rebuild", "when_needed");

@@ -239,6 +239,14 @@ struct sph_config {
   int no_pull_normal;           /**< numerics.no_pull: normal (1; default radial, 0): a wall
                                  * vertex's pull is left out in its part along the vertex's
                                  * normal only (sph_op.no_pull_normal, docs/sph-solver.md §4) */
+  int lone_ambient;             /**< numerics.lone_particle: ambient (1; default eos, 0): a fluid
+                                 * particle whose kernel holds a fluid fraction
+                                 * φ_a = Σ_b m_b w_ab / (ρ0 γ_a) below lone_fraction (a droplet)
+                                 * takes no tension, p = max(p(ρ), 0), and the lower bound of
+                                 * density_band does not stop the run for it
+                                 * (docs/sph-solver.md §4) */
+  double lone_fraction;         /**< numerics.lone_fraction: that threshold [-] (default 0.35:
+                                 * below a line of particles in 2D, a sheet in 3D) */
   int wall_vertex_mass_density; /**< numerics.wall_vertex_mass: density (1; default constant, 0):
                                  * at the start of each step a wall vertex's mass becomes
                                  * V_v ρ_v, its wall layer compressing with the fluid

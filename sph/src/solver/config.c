@@ -303,6 +303,13 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
   TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, 0, &cfg->open_gradient_difference));
   static const char *const pulls[] = {"radial", "normal", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.no_pull", pulls, 0, &cfg->no_pull_normal));
+  static const char *const lones[] = {"eos", "ambient", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.lone_particle", lones, 0, &cfg->lone_ambient));
+  const int fraction_given = cmn_case_has(c, "numerics.lone_fraction"); /* before its default */
+  TRY(cmn_case_opt_double(c, "numerics.lone_fraction", 0.35, 1e-3, 0.999, &cfg->lone_fraction));
+  if (!cfg->lone_ambient && fraction_given)
+    return cmn_case_fail(c, "numerics.lone_fraction",
+                         "applies with numerics.lone_particle: ambient only");
   static const char *const vmasses[] = {"constant", "density", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.wall_vertex_mass", vmasses, 0,
                           &cfg->wall_vertex_mass_density));

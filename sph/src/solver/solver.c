@@ -261,6 +261,34 @@ static int robin_pressure(const struct sph_solver *sv, const struct sph_vertex_b
   return status;
 }
 
+/* The fluid fraction of fluid particle a's kernel, φ_a = Σ_b m_b w_ab / (ρ0 γ_a) over the fluid
+ * particles b (a included): about 1 inside the fluid, 0.69 in the top row under a flat free
+ * surface, m_a w(0)/ρ0 for a particle alone (0.14 in 2D with the Wendland kernel at h = 2Δr;
+ * numerics.lone_particle). */
+static double fluid_fraction(const struct sph_solver *sv, size_t a) {
+  const struct sph_system *s = &sv->sys;
+  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
+  const double support = sph_kernel_support(&sv->kernel), support2 = support * support;
+  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
+  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
+  double sum = f->mass[a] * sph_kernel_w_inline(&sv->kernel, 0.0);
+  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
+    const size_t b = nl->index[q];
+    if (b == a) continue;
+    const double xb[3] = {f->x[0][b], f->x[1][b], f->x[2][b]};
+    double d[3];
+    sph_domain_delta(&s->domain, xb, xa, d);
+    const double r2 = dot3(d, d);
+    if (r2 < support2) sum += f->mass[b] * sph_kernel_w_inline(&sv->kernel, sqrt(r2));
+  }
+  return sum / (sv->cfg.rho0 * f->gamma[a]);
+}
+
+/* 1 for a droplet: fluid particle a's kernel holds less fluid than numerics.lone_fraction. */
+static int lone_particle(const struct sph_solver *sv, size_t a) {
+  return fluid_fraction(sv, a) < sv->cfg.lone_fraction;
+}
+
 static void boundary_values_impl(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
   struct sph_parts *f = &s->part[SPH_KIND_FLUID], *v = &s->part[SPH_KIND_VERTEX];
@@ -268,7 +296,9 @@ static void boundary_values_impl(struct sph_solver *sv) {
   const struct rmn_eos *eos = &sv->eos;
   const double nu = sv->cfg.nu, *g = sv->cfg.gravity;
   for (size_t a = 0; a < f->n; a++) {
-    s->part[SPH_KIND_FLUID].p[a] = rmn_eos_pressure(eos, f->rho[a]);
+    double p = rmn_eos_pressure(eos, f->rho[a]);
+    if (p < 0.0 && sv->cfg.lone_ambient && lone_particle(sv, a)) p = 0.0; /* a droplet */
+    s->part[SPH_KIND_FLUID].p[a] = p;
     sv->mu[SPH_KIND_FLUID][a] = nu * f->rho[a];
     if (sv->cfg.wall_impedance) sv->impedance[a] = f->rho[a] * rmn_eos_sound_speed(eos, f->rho[a]);
   }
@@ -633,7 +663,9 @@ static int check_state(struct sph_solver *sv, char *msg, size_t msglen) {
     for (int c = 0; c < 3; c++) bad |= !isfinite(f->x[c][a]) || !isfinite(f->v[c][a]);
     const char *what = bad ? "a non-finite value" : NULL;
     double r = f->rho[a] / rho_ref;
-    if (!what && !(r >= lo && r <= hi)) what = "a density outside numerics.density_band";
+    if (!what && !(r >= lo && r <= hi) &&
+        !(r > 0.0 && r < lo && sv->cfg.lone_ambient && lone_particle(sv, a)))
+      what = "a density outside numerics.density_band";
     if (!what && sv->nb.behind[a]) what = "left the fluid domain through a wall";
     if (what && nbad++ == 0) {
       first = a;

@@ -272,7 +272,8 @@ struct sph_config {
   double skin_over_h; /**< neighbour-list skin / h */
   int list_rebuild;   /**< enum sph_list_rebuild */
   double dt_max;
-  double density_band[2]; /**< stop when ρ/ρ0 leaves [lo, hi] */
+  double density_band[2]; /**< stop when ρ/ρ0 leaves [lo, hi] (a droplet below lo does not
+                           *   stop the run with lone_ambient) */
   /* time and output */
   double t_end, output_interval;
   long diagnostics_every; /**< steps between rows of diagnostics.csv */

@@ -261,33 +261,7 @@ static int robin_pressure(const struct sph_solver *sv, const struct sph_vertex_b
   return status;
 }
 
-/* The fluid fraction of fluid particle a's kernel, φ_a = Σ_b m_b w_ab / (ρ0 γ_a) over the fluid
- * particles b (a included): about 1 inside the fluid, 0.69 in the top row under a flat free
- * surface, m_a w(0)/ρ0 for a particle alone (0.14 in 2D with the Wendland kernel at h = 2Δr;
- * numerics.lone_particle). */
-static double fluid_fraction(const struct sph_solver *sv, size_t a) {
-  const struct sph_system *s = &sv->sys;
-  const struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  const double support = sph_kernel_support(&sv->kernel), support2 = support * support;
-  const double xa[3] = {f->x[0][a], f->x[1][a], f->x[2][a]};
-  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_FLUID];
-  double sum = f->mass[a] * sph_kernel_w_inline(&sv->kernel, 0.0);
-  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-    const size_t b = nl->index[q];
-    if (b == a) continue;
-    const double xb[3] = {f->x[0][b], f->x[1][b], f->x[2][b]};
-    double d[3];
-    sph_domain_delta(&s->domain, xb, xa, d);
-    const double r2 = dot3(d, d);
-    if (r2 < support2) sum += f->mass[b] * sph_kernel_w_inline(&sv->kernel, sqrt(r2));
-  }
-  return sum / (sv->cfg.rho0 * f->gamma[a]);
-}
-
-/* 1 for a droplet: fluid particle a's kernel holds less fluid than numerics.lone_fraction. */
-static int lone_particle(const struct sph_solver *sv, size_t a) {
-  return fluid_fraction(sv, a) < sv->cfg.lone_fraction;
-}
+static int lone_particle(const struct sph_solver *sv, size_t a);
 
 static void boundary_values_impl(struct sph_solver *sv) {
   struct sph_system *s = &sv->sys;
@@ -578,6 +552,22 @@ static double kernel_sum(const struct sph_solver *sv, size_t a, const double *co
     sum += pb->mass[b] * sph_kernel_w_inline(k, sqrt(r2));
   }
   return sum;
+}
+
+/* The fluid fraction of fluid particle a's kernel, φ_a = Σ_b m_b w_ab / (ρ0 γ_a) over the fluid
+ * particles b, a's own m_a w(0) included (the lists leave a out): about 1 inside the fluid, 0.69 in
+ * the top row under a flat free surface, m_a w(0)/ρ0 for a particle alone (0.14 in 2D with the
+ * Wendland kernel at h = 2Δr; numerics.lone_particle). */
+static double fluid_fraction(const struct sph_solver *sv, size_t a) {
+  const struct sph_parts *f = &sv->sys.part[SPH_KIND_FLUID];
+  const double self = f->mass[a] * sph_kernel_w_inline(&sv->kernel, 0.0);
+  const double sum = kernel_sum(sv, a, (const double *const *)f->x, SPH_KIND_FLUID, self);
+  return sum / (sv->cfg.rho0 * f->gamma[a]);
+}
+
+/* 1 for a droplet: fluid particle a's kernel holds less fluid than numerics.lone_fraction. */
+static int lone_particle(const struct sph_solver *sv, size_t a) {
+  return fluid_fraction(sv, a) < sv->cfg.lone_fraction;
 }
 
 double sph_solver_kernel_sum(const struct sph_solver *sv, size_t a) {

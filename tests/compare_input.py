@@ -15,7 +15,7 @@ BAD = [  # (sph key, bad value, part of the message)
     ("wall_vertex_mass", "heavy",
      "sph.wall_vertex_mass: expected one of constant, density, not 'heavy'"),
     ("open_gradient", "upwind",
-     "sph.open_gradient: expected one of symmetric, difference, axis, not 'upwind'"),
+     "sph.open_gradient: expected one of symmetric, difference, not 'upwind'"),
     ("diffusion", "magic", "sph.diffusion: expected one of none, ferrari, brezzi, not 'magic'"),
     ("diffusion_speed", "fast", "sph.diffusion_speed: expected one of max, eta, not 'fast'"),
     ("width", -1, "sph.width: expected a width > 0 (m), got -1"),

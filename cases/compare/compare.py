@@ -304,7 +304,7 @@ def main(argv):
                  f"(expected: {', '.join(sorted(allowed))})")
     # sabre-sph's choices, checked here so that a bad value names the problem file's key
     for key, choices in (("diffusion", ("none", "ferrari", "brezzi")),
-                         ("open_gradient", ("symmetric", "difference", "axis")),
+                         ("open_gradient", ("symmetric", "difference")),
                          ("diffusion_speed", ("max", "eta")),
                          ("no_pull", ("radial", "normal")),
                          ("wall_vertex_mass", ("constant", "density"))):

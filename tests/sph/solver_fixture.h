@@ -123,7 +123,7 @@ static inline void fixture_config(struct sph_config *cfg) {
   cfg->gamma_factor = 0.05;
   cfg->skin_over_h = 0.2;
   cfg->list_rebuild = SPH_LISTS_WHEN_NEEDED;
-  cfg->open_gradient = SPH_OPEN_GRADIENT_SYMMETRIC;
+  cfg->open_gradient_difference = 0;
   cfg->dt_max = INFINITY;
   cfg->wall_impedance = SPH_IMPEDANCE_CONTACT; /* the case file's defaults */
   cfg->wall_impedance_reach = 1.0;

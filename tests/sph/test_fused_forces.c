@@ -1,8 +1,8 @@
 /* The momentum equation's fluid pairs fused into one pass (solver.c, operators/pressure.h) give
  * bitwise the accelerations of the operators called one after the other,
  * sph_op_grad_pressure and sph_op_lap: a 3D tank with viscosity, volume diffusion and the wall
- * impedance, particles off the lattice and moving; a 2D through-flow with the difference and the
- * axis forms next to its open boundaries; and the axis form against M(37). */
+ * impedance, particles off the lattice and moving; a 2D through-flow with the difference form next
+ * to its open boundaries. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,7 +68,7 @@ static void compare(struct sph_solver *sv, int shake) {
     if (sph_open_exit_segment(sv->open, sv, a) >= 0) continue; /* gravity only */
     double gp[3], lap[3] = {0.0, 0.0, 0.0};
     sph_op_grad_pressure(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? &imp : NULL,
-                         sv->cfg.open_gradient, NULL, gp);
+                         sv->cfg.open_gradient_difference, NULL, gp);
     if (viscous) sph_op_lap(&op, muk, (const double *const(*)[3])vel, flux, a, lap);
     for (int c = 0; c < 3; c++) {
       const double acc = (lap[c] - gp[c]) * (1.0 / f->rho[a]) + sv->cfg.gravity[c];
@@ -104,25 +104,16 @@ static void test_tank_contact(void **state) {
   fixture_solver_destroy(sv);
 }
 
-static void open_form(const char *form) {
+static void test_open_difference(void **state) {
+  (void)state;
   char text[4096];
-  snprintf(text, sizeof text, "%snumerics: {open_gradient: %s}\n", FIXTURE_THROUGH_CASE, form);
+  snprintf(text, sizeof text, "%snumerics: {open_gradient: difference}\n", FIXTURE_THROUGH_CASE);
   struct sph_solver *sv = fixture_solver_from_case(text);
   char msg[1024];
   for (int n = 0; n < 60; n++) /* particles created and leaving */
     if (sph_solver_step(sv, INFINITY, msg, sizeof msg) != 0) fail_msg("%s", msg);
   compare(sv, 0);
   fixture_solver_destroy(sv);
-}
-
-static void test_open_difference(void **state) {
-  (void)state;
-  open_form("difference");
-}
-
-static void test_open_axis_fused(void **state) {
-  (void)state;
-  open_form("axis");
 }
 
 /* The pair term both paths form for k = 1, m_b (ρ_a (f_b − fc)/ρ_b² + (f_a − fc)/ρ_a), against
@@ -151,85 +142,9 @@ static void test_pair_term_k1(void **state) {
   assert_true(worst <= 1e-15);
 }
 
-/* The axis form of the open boundaries' gradient (operators/pressure.h): in the through-flow,
- * moved off its lattice, with every pressure set to 5 kPa, every particle's Grad(p) with the axis
- * form against M(37)'s:
- * the same bits without a wet open segment in the kernel; otherwise the two differ only along
- * n̂_a, where the form keeps (1 − s_a) of M(37)'s push (nothing where the walls have no part
- * along the axis: exact for a constant along it), and across n̂_a they agree (a wall's push
- * kept, at the corners), to round-off of |Grad|. The axis and share against sums formed here
- * (in 2D ∇γ_as is along the segment's normal, so the floor and lid, normal to the open faces,
- * leave s_a = 1); for k = 1 and k = 0 of M(37). */
-static void test_open_axis(void **state) {
-  (void)state;
-  char text[4096];
-  snprintf(text, sizeof text, "%snumerics: {open_gradient: axis}\n", FIXTURE_THROUGH_CASE);
-  struct sph_solver *sv = fixture_solver_from_case(text);
-  struct sph_system *s = &sv->sys;
-  struct sph_parts *f = &s->part[SPH_KIND_FLUID];
-  struct sabre_rng rng;
-  sabre_rng_seed(&rng, 5);
-  for (size_t a = 0; a < f->n; a++)
-    for (int c = 0; c < 2; c++) f->x[c][a] += sabre_rng_uniform(&rng, -0.2, 0.2) * s->dr;
-  sph_solver_sync(sv);
-  sph_solver_evaluate(sv); /* the wet flags, the lists and ∇γ_as */
-  double *cp[SPH_NKINDS];
-  for (int k = 0; k < SPH_NKINDS; k++) {
-    cp[k] = malloc((s->part[k].n ? s->part[k].n : 1) * sizeof *cp[k]);
-    for (size_t i = 0; i < s->part[k].n; i++) cp[k][i] = 5000.0;
-  }
-  const double *pk[SPH_NKINDS] = {cp[0], cp[1], cp[2]};
-  const struct sph_op op = {s, &sv->kernel, &sv->nb, 0};
-  const struct sph_nlist *nl = &sv->nb.list[SPH_KIND_SEGMENT];
-  const struct sph_parts *ps = &s->part[SPH_KIND_SEGMENT];
-  size_t none = 0, open = 0, corner = 0;
-  double worst = 0.0, worst_axis = 0.0;
-  for (int m = 0; m < 2; m++) { /* k = 1 (the solver's default) and k = 0 (the papers') */
-    const double k = m == 0 ? 1.0 : 0.0;
-    for (size_t a = 0; a < f->n; a++) {
-      double gs[3], gd[3], n[3], share;
-      sph_op_grad_pressure(&op, k, pk, a, NULL, SPH_OPEN_GRADIENT_SYMMETRIC, NULL, gs);
-      sph_op_grad_pressure(&op, k, pk, a, NULL, SPH_OPEN_GRADIENT_AXIS, NULL, gd);
-      double go[3] = {0.0, 0.0, 0.0}, gw[3] = {0.0, 0.0, 0.0};
-      for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++)
-        for (int c = 0; c < 3; c++)
-          (ps->flags[nl->index[q]] & SPH_FLAG_WET ? go : gw)[c] += sv->nb.grad_gamma_as[c][q];
-      const double lo = sqrt(go[0] * go[0] + go[1] * go[1] + go[2] * go[2]);
-      if (!sph_op_open_axis(&op, a, n, &share)) {
-        assert_true(lo == 0.0);
-        for (int c = 0; c < 3; c++) assert_true(gd[c] == gs[c]);
-        none++;
-        continue;
-      }
-      const double gwn = fabs(gw[0] * go[0] + gw[1] * go[1] + gw[2] * go[2]) / lo;
-      worst_axis = fmax(worst_axis, fabs(share - lo / (lo + gwn)));
-      for (int c = 0; c < 3; c++) worst_axis = fmax(worst_axis, fabs(n[c] - go[c] / lo));
-      const double size = sqrt(gs[0] * gs[0] + gs[1] * gs[1] + gs[2] * gs[2]);
-      const double sn = gs[0] * n[0] + gs[1] * n[1] + gs[2] * n[2];
-      const double dn = gd[0] * n[0] + gd[1] * n[1] + gd[2] * n[2];
-      double e = fabs(dn - (1.0 - share) * sn);
-      for (int c = 0; c < 3; c++) e = fmax(e, fabs((gd[c] - dn * n[c]) - (gs[c] - sn * n[c])));
-      worst = fmax(worst, e / size);
-      open++;
-      if (gw[0] != 0.0 || gw[1] != 0.0 || gw[2] != 0.0) corner++; /* a wall in the kernel too */
-    }
-  }
-  print_message(
-      "%zu particles without open segments (M37's bits), %zu with (%zu of them with a "
-      "wall too): largest difference %.2e of |Grad|; axis and share %.2e\n",
-      none, open, corner, worst, worst_axis);
-  assert_true(none > 0 && open > corner && corner > 0);
-  assert_true(worst <= 1e-13 && worst_axis <= 1e-14);
-  for (int k = 0; k < SPH_NKINDS; k++) free(cp[k]);
-  fixture_solver_destroy(sv);
-}
-
 int main(void) {
-  const struct CMUnitTest tests[] = {cmocka_unit_test(test_tank),
-                                     cmocka_unit_test(test_tank_contact),
-                                     cmocka_unit_test(test_open_difference),
-                                     cmocka_unit_test(test_open_axis_fused),
-                                     cmocka_unit_test(test_pair_term_k1),
-                                     cmocka_unit_test(test_open_axis)};
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_tank), cmocka_unit_test(test_tank_contact),
+      cmocka_unit_test(test_open_difference), cmocka_unit_test(test_pair_term_k1)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -334,8 +334,7 @@ static void test_create_delete_hand(void **state) {
   assert_true(f->id[a] == id);
   /* the centre of the entered cell in front of the wall layer: with M(37) (this case) the fitted
    * φΔr, not the lattice's λΔr (numerics.vertex_layer, used with the difference form) */
-  assert_true(sv->cfg.open_gradient == SPH_OPEN_GRADIENT_SYMMETRIC &&
-              fabs(sv->vertex_phi - 0.5) > 0.05);
+  assert_true(!sv->cfg.open_gradient_difference && fabs(sv->vertex_phi - 0.5) > 0.05);
   const double off = (sv->vertex_phi + 0.5) * 0.025;
   assert_true(fabs(f->x[0][a] - (0.3 - off)) < 1e-15 && fabs(f->x[1][a] - 0.075) < 1e-15);
   for (int c = 0; c < 3; c++) assert_true(f->v[c][a] == v->v[c][iv]);
@@ -627,8 +626,6 @@ static void test_pressure_level(void **state) {
   /* measured 2.2e-4 and 2.7e-4; 1.4 % and 0.45 % while the difference form's new rows were
    * created at (φ + 1/2)Δr, not on the lattice (docs/sph-solver.md §10) */
   assert_true(du <= 1e-3 && dp <= 5e-4 && dn <= 1);
-  level_run("axis", &du, &dp, &dn); /* in 1D the axis is the pipe's and s_a = 1: the same form */
-  assert_true(du <= 1e-3 && dp <= 5e-4 && dn <= 1);
   level_run("symmetric", &du, &dp, &dn); /* the defect this form leaves: the test can fail */
   assert_true(du > 0.05);
 }
@@ -636,12 +633,12 @@ static void test_pressure_level(void **state) {
 /* The valve end of cases/compare/water_hammer_2d at Δr = 1.25 mm: a channel 0.1 m × 0.02 m between
  * free-slip walls at rest at 4 kPa, closed at x = 0, u = 0 imposed on the open face at x = 0.1 m,
  * the hammer's numerics (Brezzi diffusion, no_pull: normal, wall_vertex_mass: density, 300
- * repacking steps), to 0.03 s: the fluid must stay at rest. With the difference form (χ_a p_a ×
- * the whole zeroth-order defect taken out, χ_a the open segments' share of |term_as|: at the
- * corners it leaves (1 − χ_a) of the face's push, varying across the channel) the particles next
- * to the face's corners move across, measured 0.062 m/s by 0.03 s (0.17 by 0.06 s; at
- * Δr = 0.625 mm the run stops); with the axis form (the face's push taken out whole along its
- * axis, docs/sph-solver.md §10) 0.007 m/s. */
+ * repacking steps), to 0.03 s. With M(37) (symmetric) the fluid stays at rest (measured
+ * 0.0065 m/s); the difference form
+ * next to a velocity face at a pressure level is unstable in 2D (docs/sph-solver.md §10, "Still
+ * open with difference"): the particles next to the face's corners move across, measured
+ * 0.062 m/s by 0.03 s (0.17 by 0.06 s; at Δr = 0.625 mm 0.44 m/s by 0.07 s and the hammer
+ * stops). The second assertion records that defect: it fails once the form is fixed. */
 static const char valve_case[] =
     "geometry:\n"
     "  dimension: 2\n"
@@ -678,8 +675,8 @@ static double valve_run(const char *form) {
 static void test_valve_corner(void **state) {
   (void)state;
   print_message("valve end at 4 kPa:\n");
-  assert_true(valve_run("axis") <= 0.02);
-  assert_true(valve_run("difference") > 0.04); /* the corners' defect: the test can fail */
+  assert_true(valve_run("symmetric") <= 0.02);
+  assert_true(valve_run("difference") > 0.04); /* the known defect (above) */
 }
 
 /* The mass ledgers' compensated sum: 10⁶ steps of 0.005–0.015 kg (pseudo-random) onto a total that

@@ -32,7 +32,7 @@ static void test_defaults(void **state) {
   assert_int_equal(cfg.gravity_correction, 2);
   assert_int_equal(cfg.vertex_hydro, SPH_VHYDRO_FULL);
   assert_int_equal(cfg.gamma_dynamic, 0);
-  assert_int_equal(cfg.open_gradient, SPH_OPEN_GRADIENT_SYMMETRIC);
+  assert_int_equal(cfg.open_gradient_difference, 0);
   assert_int_equal(cfg.no_pull_normal, 0);
   assert_int_equal(cfg.lone_ambient, 0);
   assert_true(cfg.lone_fraction == 0.35);
@@ -73,8 +73,7 @@ static void test_errors(void **state) {
   expect("repack: {settle: -1}\n", "repack.settle", "");
   expect("repack: {layer_equilibrium: yes please}\n", "repack.layer_equilibrium", "");
   expect("repack: {layer_equilibrium: true}\n", "repack.layer_equilibrium", "non-zero gravity");
-  expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient",
-         "symmetric, difference, axis");
+  expect("numerics: {open_gradient: diff}\n", "numerics.open_gradient", "symmetric, difference");
   expect("numerics: {no_pull: tangential}\n", "numerics.no_pull", "radial, normal");
   expect("numerics: {lone_particle: zero}\n", "numerics.lone_particle", "eos, ambient");
   expect("numerics: {lone_particle: ambient, lone_fraction: 1.5}\n", "numerics.lone_fraction", "");

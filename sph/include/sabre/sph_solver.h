@@ -200,14 +200,6 @@ struct sph_force_group {
   long edges[64]; /**< 1-based element numbers within the wall (source_index) */
 };
 
-/** numerics.open_gradient (sph_config.open_gradient): the pressure gradient next to open
- *  boundaries (sph_op_grad_pressure, docs/sph-solver.md §10). */
-enum sph_open_gradient {
-  SPH_OPEN_GRADIENT_SYMMETRIC = 0, /**< M(37) everywhere (the default) */
-  SPH_OPEN_GRADIENT_DIFFERENCE,    /**< exact for constants in proportion to the open share χ_a */
-  SPH_OPEN_GRADIENT_AXIS           /**< exact for constants along the open axis n̂_a */
-};
-
 struct sph_config {
   /* fluid */
   double rho0, c0, xi, nu;
@@ -239,9 +231,10 @@ struct sph_config {
                                (docs/sph-solver.md §4) */
   double wall_impedance_reach;  /**< contact form: distance from a wall element within which the
                                      impedance acts, ω = 1 − d/reach [Δr] */
-  int open_gradient;            /**< numerics.open_gradient, enum sph_open_gradient: the pressure
-                                 * gradient next to open boundaries (sph_op_grad_pressure,
-                                 * docs/sph-solver.md §10) */
+  int open_gradient_difference; /**< 1 (numerics.open_gradient: difference; default symmetric): the
+                                 * pressure gradient is exact for constants next to open
+                                 * boundaries in proportion to their share of the wall terms
+                                 * (sph_op_grad_pressure, docs/sph-solver.md §10) */
   int gamma_dynamic;            /**< γ by dγ/dt = v·∇γ, M(4), instead of its closed form */
   int no_pull_normal;           /**< numerics.no_pull: normal (1; default radial, 0): a wall
                                  * vertex's pull is left out in its part along the vertex's

@@ -287,8 +287,7 @@ size_t sph_open_create_particles(struct sph_open *op, struct sph_solver *sv) {
    * difference form the lattice's wall gap λΔr (numerics.vertex_layer), one spacing before the
    * first row; with M(37) and its inflow layer the fitted φΔr, where that layer's centre is at one
    * particle mass (docs/sph-solver.md §10) */
-  const double lambda =
-      sv->cfg.open_gradient != SPH_OPEN_GRADIENT_SYMMETRIC ? sv->cfg.vertex_layer : sv->vertex_phi;
+  const double lambda = sv->cfg.open_gradient_difference ? sv->cfg.vertex_layer : sv->vertex_phi;
   const double offset = (lambda + 0.5) * s->dr;
   size_t count = 0;
   for (size_t i = 0; i < v->n; i++) {

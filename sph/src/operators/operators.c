@@ -48,38 +48,6 @@ double sph_op_open_share(const struct sph_op *op, size_t a) {
   return all > 0.0 ? open / all : 0.0;
 }
 
-int sph_op_open_axis(const struct sph_op *op, size_t a, double n[3], double *share) {
-  const struct sph_parts *ps = &op->sys->part[SPH_KIND_SEGMENT];
-  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_SEGMENT];
-  double go[3] = {0.0, 0.0, 0.0}, gw[3] = {0.0, 0.0, 0.0};
-  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-    double *sum = ps->flags[nl->index[q]] & SPH_FLAG_WET ? go : gw; /* dry ones act as walls */
-    for (int c = 0; c < 3; c++) sum[c] += op->nb->grad_gamma_as[c][q];
-  }
-  const double len = sqrt(go[0] * go[0] + go[1] * go[1] + go[2] * go[2]);
-  if (!(len > 0.0)) return 0;
-  for (int c = 0; c < 3; c++) n[c] = go[c] / len;
-  *share = len / (len + fabs(gw[0] * n[0] + gw[1] * n[1] + gw[2] * n[2]));
-  return 1;
-}
-
-/* Σ_{b∈F} V_b ((ρ_a/ρ_b)^k + (ρ_b/ρ_a)^k) ∇w_ab: the fluid pairs' part of the weight of f_a in
- * M(37) for a constant field (both terms of each pair), into F. */
-static void fluid_level_weight(const struct sph_op *op, double k, size_t a, double F[3]) {
-  const struct sph_system *s = op->sys;
-  const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
-  const struct sph_nlist *nl = &op->nb->list[SPH_KIND_FLUID];
-  for (int c = 0; c < 3; c++) F[c] = 0.0;
-  for (size_t q = nl->offset[a]; q < nl->offset[a + 1]; q++) {
-    const size_t b = nl->index[q];
-    struct sph_pair pr;
-    if (!sph_pair_eval(op->kernel, s, pa, a, pa, b, &pr)) continue;
-    const double ratio = sph_rho_ratio_k(pa->rho[a], pa->rho[b], k);
-    const double t = pa->mass[b] / pa->rho[b] * (ratio + 1.0 / ratio) * pr.dwdr_over_r;
-    for (int c = 0; c < 3; c++) F[c] += t * pr.r[c];
-  }
-}
-
 /* (v_a − v_b)·(r_a − r_b) for fluid particle a and vertex b at separation r = r_a − r_b (v_b its
  * motion): not positive when a does not move away from b. */
 static double closing_vertex(const struct sph_parts *pa, size_t a, const struct sph_parts *pb,
@@ -128,13 +96,10 @@ static void add_term(double g[3], double t, const double d[3], const double *n) 
 /* Grad^{γ,k}_a(f), M(37); with no_pull, a wall pair (vertex or segment) whose weighted sum
  * (ρ_a/ρ_b)^k f_b + (ρ_b/ρ_a)^k f_a is negative is left out while a does not move away from the
  * element (sph_op_grad_pressure): a pull that would do work ≥ 0 on the pair's relative motion.
- * open_form (enum sph_open_gradient): difference, χ_a f_a × the zeroth-order defect taken out of
- * every pair; axis, s_a f_a (F_a·n̂_a) n̂_a taken out (sph_op_open_axis; F_a the weight of f_a for a
- * constant field over the pairs kept). g_fluid (NULL: none): the sum over the fluid pairs already
- * formed by the caller (same pairs, order and arithmetic); the sum then goes on over the vertices
- * and segments only. */
+ * g_fluid (NULL: none): the sum over the fluid pairs already formed by the caller (same pairs,
+ * order and arithmetic); the sum then goes on over the vertices and segments only. */
 static void grad(const struct sph_op *op, double k, const double *const f[SPH_NKINDS], size_t a,
-                 int no_pull, const struct sph_wall_impedance *impedance, int open_form,
+                 int no_pull, const struct sph_wall_impedance *impedance, int open_difference,
                  const struct sph_vertex_layer *layer, const double *g_fluid, double out[3]) {
   const struct sph_system *s = op->sys;
   const struct sph_parts *pa = &s->part[SPH_KIND_FLUID];
@@ -142,15 +107,9 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
   double g[3] = {0.0, 0.0, 0.0};
   if (g_fluid)
     for (int c = 0; c < 3; c++) g[c] = g_fluid[c];
-  /* Next to an open boundary: the weight F of f_a along the open axis n̂, taken out below in
-   * proportion to the open segments' share along it (docs/sph-solver.md §10). */
-  double n[3], share = 0.0, F[3] = {0.0, 0.0, 0.0};
-  const int axis = open_form == SPH_OPEN_GRADIENT_AXIS && sph_op_open_axis(op, a, n, &share);
-  if (axis) fluid_level_weight(op, k, a, F);
-  /* difference: χ_a f_a × the zeroth-order defect taken out of every pair,
-   * (ρ_a/ρ_b)^k (f_b − χ_a f_a) + (1 − χ_a) f_a (ρ_b/ρ_a)^k (docs/sph-solver.md §10) */
-  const double chi = open_form == SPH_OPEN_GRADIENT_DIFFERENCE ? sph_op_open_share(op, a) : 0.0;
-  const double fc = chi * fa;
+  /* Near an open boundary, χ_a f_a × the zeroth-order defect is taken out of every pair:
+   * (ρ_a/ρ_b)^k (f_b − χ_a f_a) + (1 − χ_a) f_a (ρ_b/ρ_a)^k (docs/sph-solver.md §10). */
+  const double chi = open_difference ? sph_op_open_share(op, a) : 0.0, fc = chi * fa;
   const double qa = (fa - fc) / rho_a; /* the fluid pairs' f_a part for k = 1 */
   for (int kind = g_fluid ? SPH_KIND_VERTEX : SPH_KIND_FLUID; kind <= SPH_KIND_VERTEX; kind++) {
     const struct sph_parts *pb = &s->part[kind];
@@ -191,8 +150,6 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
       const double lv = layer && kind == SPH_KIND_VERTEX ? layer->vol[b] : 0.0;
       const double t = (vb - lv) * sum * pr.dwdr_over_r;
       add_term(g, t, pr.r, cut);
-      if (axis && kind == SPH_KIND_VERTEX) /* the fluid pairs' part: fluid_level_weight */
-        add_term(F, (vb - lv) * (ratio + 1.0 / ratio) * pr.dwdr_over_r, pr.r, cut);
       if (lv != 0.0) { /* the vertex's entered mass, at the centre of its layer */
         const double xa[3] = {pa->x[0][a], pa->x[1][a], pa->x[2][a]};
         const double xl[3] = {layer->x[0][b], layer->x[1][b], layer->x[2][b]};
@@ -201,9 +158,8 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
         const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         const double r = sqrt(r2);
         if (r > 0.0 && r < sph_kernel_support(op->kernel)) {
-          const double dw = sph_kernel_dwdr_inline(op->kernel, r);
-          add_term(g, lv * sum * dw / r, d, cut);
-          if (axis) add_term(F, lv * (ratio + 1.0 / ratio) * dw / r, d, cut);
+          const double tl = lv * sum * sph_kernel_dwdr_inline(op->kernel, r) / r;
+          add_term(g, tl, d, cut);
         }
       }
     }
@@ -222,12 +178,6 @@ static void grad(const struct sph_op *op, double k, const double *const f[SPH_NK
     if (no_pull && t < 0.0 && approach(pa, a, ps, j) <= 0.0) continue;
     if (fc != 0.0) t -= fc * (ratio + 1.0 / ratio);
     for (int c = 0; c < 3; c++) g[c] -= t * op->nb->grad_gamma_as[c][q];
-    if (axis)
-      for (int c = 0; c < 3; c++) F[c] -= (ratio + 1.0 / ratio) * op->nb->grad_gamma_as[c][q];
-  }
-  if (axis) {
-    const double fn = share * fa * (F[0] * n[0] + F[1] * n[1] + F[2] * n[2]);
-    for (int c = 0; c < 3; c++) g[c] -= fn * n[c];
   }
   const double inv_gamma = 1.0 / pa->gamma[a];
   for (int c = 0; c < 3; c++) out[c] = g[c] * inv_gamma;
@@ -239,17 +189,17 @@ void sph_op_grad(const struct sph_op *op, double k, const double *const f[SPH_NK
 }
 
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const struct sph_wall_impedance *impedance, int open_form,
+                          size_t a, const struct sph_wall_impedance *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]) {
-  grad(op, k, p, a, 1, impedance, open_form, layer, NULL, out);
+  grad(op, k, p, a, 1, impedance, open_difference, layer, NULL, out);
 }
 
 void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
                                 const double *const p[SPH_NKINDS], size_t a,
-                                const struct sph_wall_impedance *impedance, int open_form,
+                                const struct sph_wall_impedance *impedance, int open_difference,
                                 const struct sph_vertex_layer *layer, const double g_fluid[3],
                                 double out[3]) {
-  grad(op, k, p, a, 1, impedance, open_form, layer, g_fluid, out);
+  grad(op, k, p, a, 1, impedance, open_difference, layer, g_fluid, out);
 }
 
 static double comp(const double *const B[3], int c, size_t i) { return B[c] ? B[c][i] : 0.0; }

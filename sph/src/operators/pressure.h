@@ -35,18 +35,14 @@
  * element (contact form, below). A receding particle sees the wall value unchanged. Open elements
  * (SPH_FLAG_OPEN) keep the values of their own Riemann solve.
  *
- * open_form (numerics.open_gradient, enum sph_open_gradient): next to an open boundary the
- * operator is made exact for a constant field, so that the flowing rows' zeroth-order defect
- * does not push the fluid in proportion to the pressure level (docs/sph-solver.md §10).
- * difference: in proportion to χ_a, the share of the wet open segments (SPH_FLAG_WET) in the wall
- * terms of a's kernel (Σ_wet |term_as| / Σ_s |term_as|), every pair's f_a-part loses χ_a f_a:
- * χ_a = 1 (only open segments seen) gives the difference form (ρ_a/ρ_b)^k (f_b − f_a).
- * axis: along the open axis n̂_a and in proportion to the open share s_a along it
- * (sph_op_open_axis), with F_a the weight of f_a in the sum for a constant field
- * (Σ_b V_b ((ρ_a/ρ_b)^k + (ρ_b/ρ_a)^k) ∇w_ab − Σ_s (...) ∇γ_as over the pairs kept),
- * s_a f_a (F_a·n̂_a) n̂_a is taken out: the difference form along n̂_a where the walls have no part
- * along it, M(37) across it (a wall meeting the boundary keeps its push whole). With either, a
- * particle without wet open segments gets M(37) unchanged, bit for bit.
+ * open_difference (numerics.open_gradient: difference): next to an open boundary the operator is
+ * made exact for a constant field in proportion to χ_a, the share of the wet open segments
+ * (SPH_FLAG_WET) in the wall terms of a's kernel (Σ_wet |term_as| / Σ_s |term_as|, 0 without
+ * segments): every pair's
+ * f_a-part loses χ_a f_a, so that χ_a = 1 (a particle that sees only open segments) gives the
+ * difference form (ρ_a/ρ_b)^k (f_b − f_a) and χ_a = 0 (walls only, or the bulk) M(37) unchanged,
+ * bit for bit. Without it the flowing rows' zeroth-order defect at an open boundary pushes the
+ * fluid in proportion to the pressure level (docs/sph-solver.md §10).
  *
  * layer (NULL: none): per vertex b, a volume vol[b] [m^d] that counts at (x[0][b], x[1][b],
  * x[2][b]) instead of at r_b, with b's pressure and density (its volume at r_b is then
@@ -72,32 +68,23 @@ struct sph_wall_impedance {
   double reach;
 };
 void sph_op_grad_pressure(const struct sph_op *op, double k, const double *const p[SPH_NKINDS],
-                          size_t a, const struct sph_wall_impedance *impedance, int open_form,
+                          size_t a, const struct sph_wall_impedance *impedance, int open_difference,
                           const struct sph_vertex_layer *layer, double out[3]);
 
-/* χ_a of open_form's difference above. */
+/* χ_a of open_difference above. */
 double sph_op_open_share(const struct sph_op *op, size_t a);
-
-/*
- * The open axis of fluid particle a for open_form's axis above: with G_o = Σ ∇γ_as over the wet
- * open segments (SPH_FLAG_WET) of a's kernel and G_w over its other segments (walls, and dry open
- * ones), n = G_o/|G_o| and *share = |G_o| / (|G_o| + |G_w·n|) in (0, 1]. Returns 0 (n and
- * *share untouched) when G_o = 0: no wet open segment in a's kernel.
- */
-int sph_op_open_axis(const struct sph_op *op, size_t a, double n[3], double *share);
 
 /*
  * The momentum equation's pair loops fused (solver.c): the caller sums the fluid pairs of a in one
  * pass over its fluid neighbours, in the list's order and with the arithmetic of
- * sph_op_grad_pressure and sph_op_lap (for a fluid pair: (ρ_a/ρ_b)^k p_b + p_a/(ρ_a/ρ_b)^k, less
- * χ_a p_a ((ρ_a/ρ_b)^k + (ρ_b/ρ_a)^k) with open_form difference, times V_b w'(r)/r r_ab; and
- * V_b 2 β̄_ab w'(r)/r (A_a − A_b), pairs at r = 0 left out), and these go on from that sum over
- * the vertices and segments (with open_form axis, also taking out its part along the open axis):
- * the result is bitwise that of the unfused operators (tests/sph/test_fused_forces.c).
+ * sph_op_grad_pressure and sph_op_lap (for a fluid pair: (ρ_a/ρ_b)^k p_b + p_a/(ρ_a/ρ_b)^k less
+ * χ_a p_a ((ρ_a/ρ_b)^k + (ρ_b/ρ_a)^k), times V_b w'(r)/r r_ab; and V_b 2 β̄_ab w'(r)/r (A_a − A_b),
+ * pairs at r = 0 left out), and these go on from that sum over the vertices and segments: the
+ * result is bitwise that of the unfused operators (tests/sph/test_solver.c).
  */
 void sph_op_grad_pressure_walls(const struct sph_op *op, double k,
                                 const double *const p[SPH_NKINDS], size_t a,
-                                const struct sph_wall_impedance *impedance, int open_form,
+                                const struct sph_wall_impedance *impedance, int open_difference,
                                 const struct sph_vertex_layer *layer, const double g_fluid[3],
                                 double out[3]);
 /*

@@ -299,9 +299,8 @@ int sph_config_read(struct sph_config *cfg, struct cmn_case *c, int dim) {
                          "applies to the contact form only (numerics.wall_impedance: contact)");
   TRY(cmn_case_opt_double(c, "numerics.artificial_viscosity", 0.0, 0.0, INFINITY,
                           &cfg->artificial_viscosity));
-  static const char *const ograds[] = {"symmetric", "difference", "axis", NULL};
-  TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, SPH_OPEN_GRADIENT_SYMMETRIC,
-                          &cfg->open_gradient));
+  static const char *const ograds[] = {"symmetric", "difference", NULL};
+  TRY(cmn_case_opt_choice(c, "numerics.open_gradient", ograds, 0, &cfg->open_gradient_difference));
   static const char *const pulls[] = {"radial", "normal", NULL};
   TRY(cmn_case_opt_choice(c, "numerics.no_pull", pulls, 0, &cfg->no_pull_normal));
   static const char *const lones[] = {"eos", "ambient", NULL};

@@ -453,8 +453,7 @@ static void forces_impl(struct sph_solver *sv) {
   for (int k = 0; k < SPH_NKINDS; k++)
     for (int c = 0; c < 3; c++) vel[k][c] = s->part[k].v[c];
   /* the inflow vertices' entered mass as a layer in front of them, with M(37) (§10) */
-  const int use_layer =
-      sv->open && !sv->open_off && sv->cfg.open_gradient == SPH_OPEN_GRADIENT_SYMMETRIC;
+  const int use_layer = sv->open && !sv->open_off && !sv->cfg.open_gradient_difference;
   if (use_layer) sph_open_layer(sv->open, sv);
     /* the sound speeds of the diffusion's pairs and the volumes m/ρ, once per particle (the
      * volume is the quotient the pair loop formed per pair: the same bits) */
@@ -482,14 +481,12 @@ static void forces_impl(struct sph_solver *sv) {
       continue;
     }
     double gp[3], lap[3] = {0.0, 0.0, 0.0}, gf[3], lf[3];
-    const int form = sv->cfg.open_gradient; /* the fused loop takes difference's χ_a p_a */
-    const double fc = form == SPH_OPEN_GRADIENT_DIFFERENCE
-                          ? sph_op_open_share(&op, a) * pk[SPH_KIND_FLUID][a]
-                          : 0.0;
+    const int diffo = sv->cfg.open_gradient_difference;
+    const double fc = diffo ? sph_op_open_share(&op, a) * pk[SPH_KIND_FLUID][a] : 0.0;
     sv->diff[a] = fluid_pairs(sv, a, fc, viscous, gf, lf);
     /* no wall pulls an approaching particle; with numerics.wall_impedance, harder push on it */
     sph_op_grad_pressure_walls(&op, sv->cfg.grad_k, pk, a, sv->cfg.wall_impedance ? &imp : NULL,
-                               form, use_layer ? &layer : NULL, gf, gp);
+                               diffo, use_layer ? &layer : NULL, gf, gp);
     if (viscous) sph_op_lap_walls(&op, muk, (const double *const(*)[3])vel, &shear, a, lf, lap);
     const double inv_rho = 1.0 / f->rho[a];
     for (int c = 0; c < 3; c++) sv->acc[c][a] = (lap[c] - gp[c]) * inv_rho + sv->cfg.gravity[c];

@@ -634,9 +634,9 @@ static void test_pressure_level(void **state) {
  * free-slip walls at rest at 4 kPa, closed at x = 0, u = 0 imposed on the open face at x = 0.1 m,
  * the hammer's numerics (Brezzi diffusion, no_pull: normal, wall_vertex_mass: density, 300
  * repacking steps), to 0.03 s. With M(37) (symmetric) the fluid stays at rest (measured
- * 0.0065 m/s); the difference form
- * next to a velocity face at a pressure level is unstable in 2D (docs/sph-solver.md §10, "Still
- * open with difference"): the particles next to the face's corners move across, measured
+ * 0.0065 m/s); the difference form next to a velocity face at a pressure level is unstable in 2D
+ * (docs/sph-solver.md §10, "Still open" and "Tried next (2026-12-08)"): the particles next to
+ * the face's corners move across, measured
  * 0.062 m/s by 0.03 s (0.17 by 0.06 s; at Δr = 0.625 mm 0.44 m/s by 0.07 s and the hammer
  * stops). The second assertion records that defect: it fails once the form is fixed. */
 static const char valve_case[] =
